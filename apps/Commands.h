@@ -1,0 +1,20 @@
+#pragma once
+// The verbs of the millsim command. Each adds its sub-command to the app and
+// returns the exit code through `result` when it runs.
+#include <CLI/CLI.hpp>
+
+namespace millsim::app {
+
+// Exit codes: 0 success, 1 failure while running, 2 bad input (scene, files, arguments).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitBadInput = 2;
+
+struct GlobalOptions {
+  bool allowPluginPath = false;
+};
+
+void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
+void addNodesCommand(CLI::App& app, int& result);
+
+}  // namespace millsim::app

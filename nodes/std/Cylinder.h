@@ -1,0 +1,20 @@
+#pragma once
+#include "millsim/core/NodeKinds.h"
+
+namespace millsim {
+
+// A cylinder along local +Y, centred on the origin (X3D convention).
+class Cylinder : public GeometryNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  SFFloat radius{this, "radius", Access::InitializeOnly, 1.f, "Radius (m).", Range::positive()};
+  SFFloat height{this, "height", Access::InitializeOnly, 2.f, "Length along Y (m).", Range::positive()};
+  SFBool top{this, "top", Access::InitializeOnly, true, "Whether the top cap is drawn."};
+  SFBool bottom{this, "bottom", Access::InitializeOnly, true, "Whether the bottom cap is drawn."};
+  SFBool side{this, "side", Access::InitializeOnly, true, "Whether the side is drawn."};
+  SFBool solid{this, "solid", Access::InitializeOnly, true, "Whether back faces may be culled."};
+};
+
+}  // namespace millsim

@@ -1,0 +1,23 @@
+#pragma once
+#include "millsim/core/NodeKinds.h"
+
+namespace millsim {
+
+// Base of nodes with children (X3DGroupingNode).
+class GroupingNode : public ChildNode {
+public:
+  MFNodeOf<ChildNode> children{this, "children", Access::InputOutput, "Nodes grouped under this one."};
+  SFVec3f bboxCenter{this, "bboxCenter", Access::InitializeOnly, glm::vec3(0.f),
+                     "Centre of a bounding box hint (m); unused by MillSim."};
+  SFVec3f bboxSize{this, "bboxSize", Access::InitializeOnly, glm::vec3(-1.f),
+                   "Size of a bounding box hint (m); -1 -1 -1 means none."};
+};
+
+// Groups child nodes without changing their frame.
+class Group : public GroupingNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+};
+
+}  // namespace millsim

@@ -1,0 +1,16 @@
+#pragma once
+#include "millsim/core/NodeKinds.h"
+
+namespace millsim {
+
+// Loads a plugin library that adds node types (see docs/plugins.md). Only the
+// scene's folder and MILLSIM_PLUGIN_PATH are searched.
+class ImportLibrary : public ChildNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  MFString url{this, "url", Access::InitializeOnly, {}, "Library file names; the first that loads is used."};
+};
+
+}  // namespace millsim

@@ -1,0 +1,21 @@
+#pragma once
+#include "millsim/core/NodeKinds.h"
+
+namespace millsim {
+
+// How a viewer moves and lights the scene.
+class NavigationInfo : public ChildNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  MFString navType{this, "type", Access::InputOutput, {"EXAMINE", "ANY"}, "Navigation modes, preferred first."};
+  SFFloat speed{this, "speed", Access::InputOutput, 1.f, "Navigation speed (m/s).", Range::nonNegative()};
+  SFBool headlight{this, "headlight", Access::InputOutput, true, "Whether a light shines from the viewer."};
+  MFFloat avatarSize{this, "avatarSize", Access::InputOutput, {0.25f, 1.6f, 0.75f},
+                     "Collision distance, eye height, step height (m).", Range::nonNegative()};
+  SFFloat visibilityLimit{this, "visibilityLimit", Access::InputOutput, 0.f,
+                          "Far clipping distance (m); 0 = unlimited.", Range::nonNegative()};
+};
+
+}  // namespace millsim

@@ -1,0 +1,15 @@
+#pragma once
+#include "millsim/core/NodeKinds.h"
+
+namespace millsim {
+
+class Sphere : public GeometryNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  SFFloat radius{this, "radius", Access::InitializeOnly, 1.f, "Radius (m).", Range::positive()};
+  SFBool solid{this, "solid", Access::InitializeOnly, true, "Whether back faces may be culled."};
+};
+
+}  // namespace millsim

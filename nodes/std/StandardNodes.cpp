@@ -1,0 +1,36 @@
+// The explicit list of node types MillSim provides. New node types are added
+// here (or, for integrators, in a plugin's entry point), never by static
+// initialisers.
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/std/Appearance.h"
+#include "millsim/std/Background.h"
+#include "millsim/std/Box.h"
+#include "millsim/std/Cylinder.h"
+#include "millsim/std/Group.h"
+#include "millsim/std/ImportLibrary.h"
+#include "millsim/std/Inline.h"
+#include "millsim/std/Material.h"
+#include "millsim/std/NavigationInfo.h"
+#include "millsim/std/Shape.h"
+#include "millsim/std/Sphere.h"
+#include "millsim/std/Transform.h"
+#include "millsim/std/Viewpoint.h"
+#include "millsim/std/WorldInfo.h"
+
+namespace millsim {
+
+void registerBuiltinNodes(NodeRegistry& r) {
+  for (const NodeType* t : {&Appearance::type(), &Background::type(), &Box::type(), &Cylinder::type(),
+                            &Group::type(), &ImportLibrary::type(), &Inline::type(), &Material::type(),
+                            &NavigationInfo::type(), &Shape::type(), &Sphere::type(), &Transform::type(),
+                            &Viewpoint::type(), &WorldInfo::type()})
+    r.add(*t);
+}
+
+NodeRegistry builtinRegistry() {
+  NodeRegistry r;
+  registerBuiltinNodes(r);
+  return r;
+}
+
+}  // namespace millsim

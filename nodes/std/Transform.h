@@ -1,0 +1,26 @@
+#pragma once
+#include <glm/mat4x4.hpp>
+
+#include "millsim/std/Group.h"
+
+namespace millsim {
+
+// Places its children in a new frame: translation, rotation and scale about a centre.
+class Transform : public GroupingNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  SFVec3f translation{this, "translation", Access::InputOutput, glm::vec3(0.f), "Translation (m)."};
+  SFRotation rotation{this, "rotation", Access::InputOutput, Rotation{}, "Rotation about center."};
+  SFVec3f scale{this, "scale", Access::InputOutput, glm::vec3(1.f), "Scale factors along the scaleOrientation axes.",
+                Range::positive()};
+  SFRotation scaleOrientation{this, "scaleOrientation", Access::InputOutput, Rotation{},
+                              "Orientation of the scale axes."};
+  SFVec3f center{this, "center", Access::InputOutput, glm::vec3(0.f), "Centre of rotation and scale (m)."};
+
+  // The X3D transform: T·C·R·SR·S·SR⁻¹·C⁻¹, child frame to parent frame.
+  glm::mat4 localMatrix() const;
+};
+
+}  // namespace millsim

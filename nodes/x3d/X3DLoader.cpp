@@ -1,0 +1,578 @@
+#include "millsim/x3d/X3DLoader.h"
+
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <libxml/xmlerror.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "millsim/std/ImportLibrary.h"
+#include "millsim/std/Inline.h"
+#include "millsim/x3d/SourceText.h"
+
+namespace millsim {
+
+namespace fs = std::filesystem;
+
+std::string LoadResult::report() const {
+  std::string out;
+  for (const auto& d : diagnostics) out += d.str() + "\n";
+  return out;
+}
+
+namespace {
+
+std::string_view nameOf(const xmlNode* n) { return reinterpret_cast<const char*>(n->name); }
+
+std::string attrValue(xmlDocPtr doc, const xmlAttr* a) {
+  xmlChar* v = xmlNodeListGetString(doc, a->children, 1);
+  std::string s = v ? reinterpret_cast<const char*>(v) : "";
+  xmlFree(v);
+  return s;
+}
+
+const xmlAttr* findAttr(const xmlNode* el, std::string_view name) {
+  for (const xmlAttr* a = el->properties; a; a = a->next)
+    if (!a->ns && nameOf(reinterpret_cast<const xmlNode*>(a)) == name) return a;
+  return nullptr;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
+  return s;
+}
+
+std::string didYouMean(const std::vector<std::string>& suggestions) {
+  if (suggestions.empty()) return {};
+  return "; did you mean " + joinNames(suggestions) + "?";
+}
+
+bool isBlank(std::string_view s) { return s.find_first_not_of(" \t\r\n") == std::string_view::npos; }
+
+// One parsed file: its text, its XML tree and its DEF namespace (an Inline's
+// DEF names are private to it, as X3D specifies).
+struct Document {
+  SourceText src;
+  xmlDocPtr xml = nullptr;
+  fs::path dir;
+  std::map<std::string, std::shared_ptr<Node>, std::less<>>* defs;
+  ~Document() {
+    if (xml) xmlFreeDoc(xml);
+  }
+};
+
+class Loader {
+public:
+  Loader(const NodeRegistry& registry, const LoadOptions& options)
+      : options_(options), sink_(options.maxErrors), scene_(std::make_unique<Scene>()) {
+    scene_->registry = registry;
+  }
+
+  LoadResult load(std::string text, std::string label, fs::path dir, fs::path canonical) {
+    if (!canonical.empty()) inlineStack_.push_back(canonical);
+    Document doc{SourceText(std::move(label), std::move(text)), nullptr, std::move(dir), &scene_->defs};
+    if (parseXml(doc)) readTopLevel(doc, scene_->root->children, true);
+    for (auto& d : sink_.all())
+      if (d.severity == Severity::Error) return {nullptr, sink_.take()};
+    return {std::move(scene_), sink_.take()};
+  }
+
+private:
+  // ---- XML ----------------------------------------------------------------
+  bool parseXml(Document& doc) {
+    struct Collected {
+      bool have = false;
+      int line = 0, column = 0;
+      std::string message;
+    } first;
+    auto handler = [](void* user, xmlErrorPtr e) {
+      auto* c = static_cast<Collected*>(user);
+      if (c->have || !e || e->level < XML_ERR_ERROR) return;
+      c->have = true;
+      c->line = e->line;
+      c->column = e->int2;
+      c->message = e->message ? e->message : "malformed XML";
+      while (!c->message.empty() && (c->message.back() == '\n' || c->message.back() == ' ')) c->message.pop_back();
+    };
+    xmlSetStructuredErrorFunc(&first, handler);
+    // No NOENT (entities stay unexpanded), no DTDLOAD, no network.
+    const int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES;
+    const std::string& t = doc.src.text();
+    doc.xml = xmlReadMemory(t.data(), static_cast<int>(t.size()), doc.src.file().c_str(), nullptr, opts);
+    xmlSetStructuredErrorFunc(nullptr, nullptr);
+    if (!doc.xml || first.have) {
+      sink_.error({doc.src.file(), first.line, first.column},
+                  "malformed XML: " + (first.have ? first.message : std::string("the document could not be read")));
+      return false;
+    }
+    if (doc.xml->intSubset && doc.xml->intSubset->entities) {
+      sink_.error(doc.src.atLine(xmlGetLineNo(reinterpret_cast<xmlNodePtr>(doc.xml->intSubset))),
+                  "entity declarations are not allowed in X3D scenes");
+      return false;
+    }
+    return true;
+  }
+
+  SourceLocation locate(Document& doc, const xmlNode* el, std::size_t* tagStart = nullptr) {
+    std::size_t pos = doc.src.findStartTag(nameOf(el), xmlGetLineNo(const_cast<xmlNode*>(el)));
+    if (tagStart) *tagStart = pos;
+    if (pos == std::string::npos) return doc.src.atLine(xmlGetLineNo(const_cast<xmlNode*>(el)));
+    return doc.src.at(pos);
+  }
+
+  SourceLocation locateAttr(Document& doc, std::size_t tagStart, std::string_view attr, const SourceLocation& fallback) {
+    std::size_t pos = doc.src.findAttribute(tagStart, attr);
+    return pos == std::string::npos ? fallback : doc.src.at(pos);
+  }
+
+  // ---- X3D / head / Scene ---------------------------------------------------
+  // Reads <X3D><head/><Scene/></X3D>, putting the Scene's nodes into `target`.
+  void readTopLevel(Document& doc, MFNodeOf<ChildNode>& target, bool isMainFile) {
+    xmlNode* root = xmlDocGetRootElement(doc.xml);
+    if (!root) {
+      sink_.error({doc.src.file(), 1, 1}, "the document has no root element; expected <X3D>");
+      return;
+    }
+    std::size_t rootTag;
+    SourceLocation rootLoc = locate(doc, root, &rootTag);
+    if (nameOf(root) != "X3D") {
+      sink_.error(rootLoc, "the root element is <" + std::string(nameOf(root)) + ">; expected <X3D>");
+      return;
+    }
+    for (const xmlAttr* a = root->properties; a; a = a->next) {
+      if (a->ns) continue;  // xmlns:xsd, xsd:noNamespaceSchemaLocation
+      std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
+      if (n == "profile" || n == "version") {
+        if (isMainFile) (n == "profile" ? scene_->profile : scene_->version) = attrValue(doc.xml, a);
+      } else {
+        sink_.warning(locateAttr(doc, rootTag, n, rootLoc), "unknown attribute '" + std::string(n) + "' on <X3D> ignored");
+      }
+    }
+    bool sawScene = false;
+    for (xmlNode* c = root->children; c && !sink_.full(); c = c->next) {
+      if (!checkNonElement(doc, c, "X3D")) continue;
+      std::string_view n = nameOf(c);
+      if (n == "head") {
+        readHead(doc, c, isMainFile);
+      } else if (n == "Scene") {
+        SourceLocation loc = locate(doc, c);
+        if (sawScene) {
+          sink_.error(loc, "a second <Scene> element; an X3D file has exactly one");
+          continue;
+        }
+        sawScene = true;
+        std::vector<const Node*> ancestors;
+        for (xmlNode* child = c->children; child && !sink_.full(); child = child->next) {
+          if (!checkNonElement(doc, child, "Scene")) continue;
+          if (nameOf(child) == "ROUTE") {
+            readRoute(doc, child);
+            continue;
+          }
+          readAndAttach(doc, child, target, "Scene", ancestors);
+        }
+      } else {
+        sink_.error(locate(doc, c), "unexpected <" + std::string(n) + "> inside <X3D>; expected <head> or <Scene>");
+      }
+    }
+    if (!sawScene && !sink_.hasErrors()) sink_.error(rootLoc, "the <X3D> element has no <Scene>");
+  }
+
+  void readHead(Document& doc, xmlNode* head, bool isMainFile) {
+    locate(doc, head);
+    for (xmlNode* c = head->children; c; c = c->next) {
+      if (!checkNonElement(doc, c, "head")) continue;
+      std::string_view n = nameOf(c);
+      std::size_t tag;
+      SourceLocation loc = locate(doc, c, &tag);
+      if (n == "meta") {
+        const xmlAttr* name = findAttr(c, "name");
+        const xmlAttr* content = findAttr(c, "content");
+        if (isMainFile && name) scene_->meta.emplace_back(attrValue(doc.xml, name), content ? attrValue(doc.xml, content) : "");
+      } else if (n != "component" && n != "unit") {
+        sink_.error(loc, "unexpected <" + std::string(n) + "> inside <head>; expected <meta>, <component> or <unit>");
+      }
+    }
+  }
+
+  // Comments and whitespace are fine anywhere; other text is a mistake.
+  // Returns true when `c` is an element to process.
+  bool checkNonElement(Document& doc, xmlNode* c, std::string_view parent) {
+    if (c->type == XML_ELEMENT_NODE) return true;
+    if (c->type == XML_TEXT_NODE || c->type == XML_CDATA_SECTION_NODE) {
+      std::string text = c->content ? reinterpret_cast<const char*>(c->content) : "";
+      if (!isBlank(text)) {
+        std::string shown = text.substr(text.find_first_not_of(" \t\r\n"), 30);
+        sink_.error(doc.src.atLine(xmlGetLineNo(c)),
+                    "unexpected text '" + shown + "' inside <" + std::string(parent) + ">; only elements belong here");
+      }
+    } else if (c->type == XML_ENTITY_REF_NODE) {
+      sink_.error(doc.src.atLine(xmlGetLineNo(c)), "entity references are not allowed in X3D scenes");
+    }
+    return false;
+  }
+
+  // ---- nodes ------------------------------------------------------------------
+  // Reads the node element `el` and adds it to `target` (a parent's node field).
+  void readAndAttach(Document& doc, xmlNode* el, NodeFieldBase& target, std::string_view parentLabel,
+                     std::vector<const Node*>& ancestors) {
+    std::size_t tag;
+    SourceLocation loc = locate(doc, el, &tag);
+    std::shared_ptr<Node> node = readNode(doc, el, tag, loc, ancestors);
+    if (node) attach(node, target, parentLabel, loc);
+  }
+
+  void attach(const std::shared_ptr<Node>& node, NodeFieldBase& target, std::string_view parentLabel,
+              const SourceLocation& loc) {
+    if (!target.accepts(*node)) {
+      sink_.error(loc, node->typeName() + " cannot go in field '" + std::string(target.name()) + "' of " +
+                           std::string(parentLabel) + ": that field takes " + std::string(target.acceptsKind()));
+      return;
+    }
+    try {
+      target.add(node);
+    } catch (const ValueError& e) {
+      sink_.error(loc, e.what());
+    }
+  }
+
+  std::shared_ptr<Node> readNode(Document& doc, xmlNode* el, std::size_t tag, const SourceLocation& loc,
+                                 std::vector<const Node*>& ancestors) {
+    const std::string type(nameOf(el));
+    if (const xmlAttr* use = findAttr(el, "USE")) return readUse(doc, el, tag, loc, attrValue(doc.xml, use), ancestors);
+
+    if (type == "ProtoDeclare" || type == "ExternProtoDeclare" || type == "ProtoInstance") {
+      sink_.error(loc, "<" + type + "> is not supported; write the nodes out or use Inline");
+      return nullptr;
+    }
+    std::shared_ptr<Node> node = scene_->registry.create(type);
+    if (!node) {
+      sink_.error(loc, "unknown node type '" + type + "'" + didYouMean(scene_->registry.suggest(type)));
+      return nullptr;
+    }
+    node->setLocation(loc);
+
+    if (const xmlAttr* def = findAttr(el, "DEF")) {
+      std::string name = attrValue(doc.xml, def);
+      SourceLocation defLoc = locateAttr(doc, tag, "DEF", loc);
+      if (name.empty() || isBlank(name)) {
+        sink_.error(defLoc, "empty DEF name");
+      } else if (auto prev = doc.defs->find(name); prev != doc.defs->end()) {
+        sink_.error(defLoc, "DEF name '" + name + "' is already used by the " + prev->second->typeName() + " at " +
+                                prev->second->location().str());
+      } else {
+        node->setDefName(name);
+        (*doc.defs)[name] = node;
+      }
+    }
+    readFields(doc, el, *node, tag, loc);
+
+    // Plugins register their node types before the rest of the file is read.
+    if (auto* lib = dynamic_cast<ImportLibrary*>(node.get())) importLibrary(doc, *lib, loc);
+
+    ancestors.push_back(node.get());
+    for (xmlNode* c = el->children; c && !sink_.full(); c = c->next) {
+      if (!checkNonElement(doc, c, type)) continue;
+      if (nameOf(c) == "ROUTE") {
+        readRoute(doc, c);
+        continue;
+      }
+      std::size_t childTag;
+      SourceLocation childLoc = locate(doc, c, &childTag);
+      std::shared_ptr<Node> child = readNode(doc, c, childTag, childLoc, ancestors);
+      if (!child) continue;
+      // containerField chooses the parent field; otherwise the child type's default.
+      std::string fieldName = child->nodeType().containerField;
+      if (const xmlAttr* cf = findAttr(c, "containerField")) fieldName = attrValue(doc.xml, cf);
+      placeChild(doc, *node, child, fieldName, childTag, childLoc);
+    }
+    ancestors.pop_back();
+
+    if (auto* inl = dynamic_cast<Inline*>(node.get())) loadInline(doc, *inl, loc);
+    node->initialize(sink_);
+    return node;
+  }
+
+  void placeChild(Document& doc, Node& parent, const std::shared_ptr<Node>& child, const std::string& fieldName,
+                  std::size_t childTag, const SourceLocation& childLoc) {
+    Field* f = parent.field(fieldName);
+    auto* nf = dynamic_cast<NodeFieldBase*>(f);
+    if (!nf || !settableInFile(nf->access())) {
+      std::vector<std::string> nodeFields;
+      for (Field* pf : parent.fields())
+        if (pf->isNodeField() && settableInFile(pf->access())) nodeFields.emplace_back(pf->name());
+      std::string where = nodeFields.empty() ? parent.typeName() + " takes no child nodes"
+                                             : parent.typeName() + "'s node fields are " + joinNames(nodeFields);
+      SourceLocation at = locateAttr(doc, childTag, "containerField", childLoc);
+      sink_.error(at, child->typeName() + " cannot be a child of " + parent.typeName() + ": no field '" + fieldName +
+                          "' to hold it (" + where + ")" + didYouMean(closestNames(fieldName, nodeFields)));
+      return;
+    }
+    attach(child, *nf, parent.typeName(), childLoc);
+  }
+
+  std::shared_ptr<Node> readUse(Document& doc, xmlNode* el, std::size_t tag, const SourceLocation& loc,
+                                const std::string& name, const std::vector<const Node*>& ancestors) {
+    for (const xmlAttr* a = el->properties; a; a = a->next) {
+      std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
+      if (!a->ns && n != "USE" && n != "containerField") {
+        sink_.error(locateAttr(doc, tag, n, loc),
+                    "a USE element takes no other attributes (found '" + std::string(n) + "'); set fields on the DEF");
+        return nullptr;
+      }
+    }
+    for (xmlNode* c = el->children; c; c = c->next)
+      if (c->type == XML_ELEMENT_NODE) {
+        sink_.error(loc, "a USE element cannot have children");
+        return nullptr;
+      }
+    auto it = doc.defs->find(name);
+    if (it == doc.defs->end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : *doc.defs) names.push_back(k);
+      sink_.error(locateAttr(doc, tag, "USE", loc), "USE '" + name + "' names no DEF earlier in this file" +
+                                                        didYouMean(closestNames(name, names)));
+      return nullptr;
+    }
+    if (it->second->typeName() != nameOf(el)) {
+      sink_.error(loc, "USE '" + name + "' refers to a " + it->second->typeName() + ", but the element is <" +
+                           std::string(nameOf(el)) + ">");
+      return nullptr;
+    }
+    for (const Node* a : ancestors)
+      if (a == it->second.get()) {
+        sink_.error(loc, "USE '" + name + "' inside its own definition would make a cycle");
+        return nullptr;
+      }
+    return it->second;
+  }
+
+  void readFields(Document& doc, xmlNode* el, Node& node, std::size_t tag, const SourceLocation& loc) {
+    for (const xmlAttr* a = el->properties; a && !sink_.full(); a = a->next) {
+      if (a->ns) continue;  // namespaced attributes (xmlns:*, xsd:*) carry no field
+      std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
+      if (n == "DEF" || n == "containerField" || n == "class") continue;
+      SourceLocation at = locateAttr(doc, tag, n, loc);
+      Field* f = node.field(n);
+      if (!f) {
+        std::vector<std::string> names;
+        for (Field* nf : node.fields())
+          if (settableInFile(nf->access()) && !nf->isNodeField()) names.emplace_back(nf->name());
+        sink_.error(at, "unknown field '" + std::string(n) + "' of " + node.typeName() + didYouMean(closestNames(n, names)));
+        continue;
+      }
+      if (f->isNodeField()) {
+        sink_.error(at, "field '" + std::string(n) + "' of " + node.typeName() +
+                            " takes a child node element, not an attribute value");
+        continue;
+      }
+      if (!settableInFile(f->access())) {
+        sink_.error(at, "field '" + std::string(n) + "' of " + node.typeName() + " is " +
+                            std::string(accessName(f->access())) + " and cannot be set in a file");
+        continue;
+      }
+      const std::string value = attrValue(doc.xml, a);
+      try {
+        f->setFromString(value);
+      } catch (const ValueError& e) {
+        std::string shown = value.size() > 40 ? value.substr(0, 37) + "..." : value;
+        sink_.error(at, "bad value '" + shown + "' for " + std::string(fieldTypeName(f->type())) + " field '" +
+                            std::string(n) + "' of " + node.typeName() + ": " + e.what());
+      }
+    }
+  }
+
+  // ---- ROUTE --------------------------------------------------------------------
+  Field* routeField(Node& node, const std::string& name, bool asSource) {
+    if (Field* f = node.field(name)) return f;
+    // X3D lets inputOutput fields be named set_x (as input) and x_changed (as output).
+    const std::string prefix = "set_", suffix = "_changed";
+    std::string base;
+    if (!asSource && name.rfind(prefix, 0) == 0) base = name.substr(prefix.size());
+    if (asSource && name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      base = name.substr(0, name.size() - suffix.size());
+    Field* f = base.empty() ? nullptr : node.field(base);
+    return f && f->access() == Access::InputOutput ? f : nullptr;
+  }
+
+  void readRoute(Document& doc, xmlNode* el) {
+    std::size_t tag;
+    SourceLocation loc = locate(doc, el, &tag);
+    std::string v[4];
+    const char* names[4] = {"fromNode", "fromField", "toNode", "toField"};
+    for (int i = 0; i < 4; ++i) {
+      const xmlAttr* a = findAttr(el, names[i]);
+      if (!a) {
+        sink_.error(loc, std::string("ROUTE is missing its '") + names[i] +
+                             "' attribute (a ROUTE needs fromNode, fromField, toNode and toField)");
+        return;
+      }
+      v[i] = attrValue(doc.xml, a);
+    }
+    Node* ends[2] = {nullptr, nullptr};
+    for (int i = 0; i < 2; ++i) {
+      auto it = doc.defs->find(v[2 * i]);
+      if (it == doc.defs->end()) {
+        std::vector<std::string> defNames;
+        for (const auto& [k, n] : *doc.defs) defNames.push_back(k);
+        sink_.error(locateAttr(doc, tag, names[2 * i], loc),
+                    "ROUTE " + std::string(names[2 * i]) + " '" + v[2 * i] +
+                        "' names no DEF before it" + didYouMean(closestNames(v[2 * i], defNames)));
+        return;
+      }
+      ends[i] = it->second.get();
+    }
+    Field* from = routeField(*ends[0], v[1], true);
+    Field* to = routeField(*ends[1], v[3], false);
+    for (int i = 0; i < 2; ++i) {
+      Field* f = i == 0 ? from : to;
+      if (f) continue;
+      std::vector<std::string> fieldNames;
+      for (Field* nf : ends[i]->fields()) fieldNames.emplace_back(nf->name());
+      sink_.error(locateAttr(doc, tag, names[2 * i + 1], loc),
+                  "ROUTE " + std::string(names[2 * i + 1]) + ": " + ends[i]->typeName() + " '" + v[2 * i] +
+                      "' has no field '" + v[2 * i + 1] + "'" + didYouMean(closestNames(v[2 * i + 1], fieldNames)));
+      return;
+    }
+    try {
+      from->routeTo(*to);
+      scene_->routes.push_back({ends[0], from, ends[1], to, loc});
+    } catch (const RouteError& e) {
+      sink_.error(loc, "cannot ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + ": " + e.what());
+    }
+  }
+
+  // ---- Inline and ImportLibrary --------------------------------------------
+  void loadInline(Document& doc, Inline& inl, const SourceLocation& loc) {
+    if (!inl.load.get()) return;
+    if (!options_.allowFileAccess) {
+      sink_.error(loc, "Inline is disabled for this load (no file access)");
+      return;
+    }
+    if (inl.url.get().empty()) {
+      sink_.error(loc, "Inline has an empty url");
+      return;
+    }
+    if (static_cast<int>(inlineStack_.size()) > options_.maxInlineDepth) {
+      sink_.error(loc, "Inline nesting deeper than " + std::to_string(options_.maxInlineDepth) + " files");
+      return;
+    }
+    std::string tried;
+    for (const std::string& url : inl.url.get()) {
+      if (url.find("://") != std::string::npos) {
+        tried += "\n  " + url + ": network URLs are not allowed";
+        continue;
+      }
+      fs::path p = fs::path(url).is_absolute() ? fs::path(url) : doc.dir / url;
+      std::error_code ec;
+      if (!fs::is_regular_file(p, ec)) {
+        tried += "\n  " + p.string() + ": no such file";
+        continue;
+      }
+      fs::path canonical = fs::weakly_canonical(p, ec);
+      for (const auto& open : inlineStack_)
+        if (open == canonical) {
+          sink_.error(loc, "Inline cycle: '" + p.string() + "' is already being loaded");
+          return;
+        }
+      std::string text;
+      if (!readFile(p, text, loc)) return;
+      inlineStack_.push_back(canonical);
+      std::map<std::string, std::shared_ptr<Node>, std::less<>> privateDefs;
+      Document sub{SourceText(p.string(), std::move(text)), nullptr, p.parent_path(), &privateDefs};
+      if (parseXml(sub)) readTopLevel(sub, inl.loaded, false);
+      inlineStack_.pop_back();
+      return;
+    }
+    sink_.error(loc, "Inline could not load any of its urls:" + tried);
+  }
+
+  void importLibrary(Document& doc, ImportLibrary& lib, const SourceLocation& loc) {
+    if (!options_.allowFileAccess) {
+      sink_.error(loc, "ImportLibrary is disabled for this load (no file access)");
+      return;
+    }
+    if (lib.url.get().empty()) {
+      sink_.error(loc, "ImportLibrary has an empty url");
+      return;
+    }
+    std::string tried;
+    for (const std::string& url : lib.url.get()) {
+      fs::path file;
+      try {
+        file = resolvePlugin(url, doc.dir, options_.plugins);
+      } catch (const PluginError& e) {
+        tried += std::string(tried.empty() ? "" : "; ") + e.what();
+        continue;
+      }
+      std::error_code ec;
+      fs::path canonical = fs::weakly_canonical(file, ec);
+      for (const auto& loaded : scene_->plugins)
+        if (loaded == canonical) return;  // a second ImportLibrary of the same file is harmless
+      try {
+        loadPlugin(file, scene_->registry);
+        scene_->plugins.push_back(canonical);
+      } catch (const PluginError& e) {
+        sink_.error(loc, e.what());
+      }
+      return;
+    }
+    sink_.error(loc, "ImportLibrary: " + tried);
+  }
+
+  bool readFile(const fs::path& p, std::string& out, const SourceLocation& loc) {
+    std::error_code ec;
+    auto size = fs::file_size(p, ec);
+    if (ec) {
+      sink_.error(loc, "cannot read '" + p.string() + "': " + ec.message());
+      return false;
+    }
+    if (size > options_.maxFileBytes) {
+      sink_.error(loc, "'" + p.string() + "' is " + std::to_string(size) + " bytes; X3D files over " +
+                           std::to_string(options_.maxFileBytes) + " bytes are refused");
+      return false;
+    }
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (!in) {
+      sink_.error(loc, "cannot read '" + p.string() + "'");
+      return false;
+    }
+    out = ss.str();
+    return true;
+  }
+
+  const LoadOptions& options_;
+  DiagnosticSink sink_;
+  std::unique_ptr<Scene> scene_;
+  std::vector<fs::path> inlineStack_;
+
+  friend LoadResult millsim::loadSceneFile(const fs::path&, const NodeRegistry&, const LoadOptions&);
+};
+
+}  // namespace
+
+LoadResult loadSceneFile(const fs::path& file, const NodeRegistry& registry, const LoadOptions& options) {
+  Loader loader(registry, options);
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return {nullptr, {{Severity::Error, {file.string(), 0, 0}, "no such file"}}};
+  if (!fs::is_regular_file(file, ec))
+    return {nullptr, {{Severity::Error, {file.string(), 0, 0}, "not a regular file"}}};
+  std::string text;
+  if (!loader.readFile(file, text, {file.string(), 0, 0})) return {nullptr, loader.sink_.take()};
+  fs::path canonical = fs::weakly_canonical(file, ec);
+  LoadResult r = loader.load(std::move(text), file.string(), file.parent_path(), canonical);
+  if (r.scene) r.scene->file = file;
+  return r;
+}
+
+LoadResult loadSceneString(std::string_view text, std::string fileLabel, const NodeRegistry& registry,
+                           const LoadOptions& options, const fs::path& baseDir) {
+  Loader loader(registry, options);
+  return loader.load(std::string(text), std::move(fileLabel), baseDir, {});
+}
+
+}  // namespace millsim

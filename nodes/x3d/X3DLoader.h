@@ -1,0 +1,39 @@
+#pragma once
+// Reads X3D (XML encoding) into a Scene with libxml2. Network access, DTD
+// loading and entity expansion are off. Every problem is a Diagnostic with
+// file:line:column; a scene with errors yields no Scene, never a crash.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "millsim/core/Diagnostics.h"
+#include "millsim/core/Plugin.h"
+#include "millsim/core/Scene.h"
+
+namespace millsim {
+
+struct LoadOptions {
+  PluginPolicy plugins{false, pluginPathFromEnvironment()};
+  // false: Inline and ImportLibrary are refused (for untrusted text and fuzzing).
+  bool allowFileAccess = true;
+  std::size_t maxErrors = 25;
+  int maxInlineDepth = 16;
+  std::uintmax_t maxFileBytes = 64u << 20;  // X3D text, not volume data
+};
+
+struct LoadResult {
+  std::unique_ptr<Scene> scene;  // null when there were errors
+  std::vector<Diagnostic> diagnostics;
+  bool ok() const { return scene != nullptr; }
+  std::string report() const;  // all diagnostics, one per line
+};
+
+LoadResult loadSceneFile(const std::filesystem::path& file, const NodeRegistry& registry,
+                         const LoadOptions& options = {});
+// `fileLabel` names the text in diagnostics; `baseDir` resolves Inline and ImportLibrary.
+LoadResult loadSceneString(std::string_view text, std::string fileLabel, const NodeRegistry& registry,
+                           const LoadOptions& options = {}, const std::filesystem::path& baseDir = {});
+
+}  // namespace millsim
