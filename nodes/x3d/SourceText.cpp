@@ -15,15 +15,31 @@ bool nameEnds(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' |
 }  // namespace
 
 std::size_t SourceText::findStartTag(std::string_view name, long line) {
-  std::size_t from = cursor_;
-  if (line >= 1 && static_cast<std::size_t>(line) <= lineStarts_.size())
-    from = std::max(from, lineStarts_[static_cast<std::size_t>(line) - 1]);
-  const std::string needle = "<" + std::string(name);
-  for (std::size_t pos = text_.find(needle, from); pos != std::string::npos; pos = text_.find(needle, pos + 1)) {
-    const std::size_t end = pos + needle.size();
-    if (end < text_.size() && nameEnds(text_[end])) {
-      cursor_ = end;
-      return pos;
+  // libxml2 gives the line where the start tag ends, so the tag begins on that
+  // line or before it. Scan forward from the cursor over markup that is not a
+  // start tag (comments, CDATA, declarations, end tags).
+  auto skipTo = [&](std::size_t from, std::string_view terminator) {
+    std::size_t e = text_.find(terminator, from);
+    return e == std::string::npos ? text_.size() : e + terminator.size();
+  };
+  std::size_t pos = cursor_;
+  while ((pos = text_.find('<', pos)) != std::string::npos) {
+    if (text_.compare(pos, 4, "<!--") == 0) {
+      pos = skipTo(pos + 4, "-->");
+    } else if (text_.compare(pos, 9, "<![CDATA[") == 0) {
+      pos = skipTo(pos + 9, "]]>");
+    } else if (text_.compare(pos, 2, "<?") == 0) {
+      pos = skipTo(pos + 2, "?>");
+    } else if (text_.compare(pos, 2, "<!") == 0 || text_.compare(pos, 2, "</") == 0) {
+      pos = skipTo(pos + 2, ">");
+    } else {
+      const std::size_t end = pos + 1 + name.size();
+      if (text_.compare(pos + 1, name.size(), name) == 0 && end < text_.size() && nameEnds(text_[end])) {
+        if (line > 0 && at(pos).line > line) return std::string::npos;  // out of step: give the line only
+        cursor_ = end;
+        return pos;
+      }
+      ++pos;
     }
   }
   return std::string::npos;

@@ -1,0 +1,189 @@
+// The X3D loader: structure, DEF/USE, containerField, routes, Inline, and the
+// location and wording of its errors.
+#include <gtest/gtest.h>
+
+#include "TestFiles.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/std/Inline.h"
+#include "millsim/std/Material.h"
+#include "millsim/std/Shape.h"
+#include "millsim/std/Sphere.h"
+#include "millsim/std/Transform.h"
+#include "millsim/x3d/X3DLoader.h"
+
+using namespace millsim;
+using millsim::test::ScratchDir;
+using millsim::test::x3d;
+
+namespace {
+
+LoadResult load(const std::string& text) {
+  LoadOptions options;
+  options.plugins.searchPath.clear();
+  return loadSceneString(text, "test.x3d", builtinRegistry(), options);
+}
+
+const Diagnostic& firstError(const LoadResult& r) {
+  for (const auto& d : r.diagnostics)
+    if (d.severity == Severity::Error) return d;
+  static Diagnostic none;
+  return none;
+}
+
+}  // namespace
+
+TEST(Loader, ReadsHeadSceneAndFields) {
+  auto r = load(R"(<?xml version="1.0"?>
+<!DOCTYPE X3D PUBLIC "ISO//Web3D//DTD X3D 3.3//EN" "http://www.web3d.org/specifications/x3d-3.3.dtd">
+<X3D profile="Immersive" version="3.3" xmlns:xsd="http://www.w3.org/2001/XMLSchema-instance">
+  <head><meta name="title" content="t"/><component name="H3DAPI" level="1"/></head>
+  <Scene>
+    <!-- a comment -->
+    <Transform translation="1 2 3" rotation="0 1 0 1.5"/>
+  </Scene>
+</X3D>)");
+  ASSERT_TRUE(r.ok()) << r.report();
+  EXPECT_EQ(r.scene->profile, "Immersive");
+  EXPECT_EQ(r.scene->version, "3.3");
+  ASSERT_EQ(r.scene->meta.size(), 1u);
+  EXPECT_EQ(r.scene->meta[0].second, "t");
+  auto ts = r.scene->nodesOfType<Transform>();
+  ASSERT_EQ(ts.size(), 1u);
+  EXPECT_EQ(ts[0]->translation.get(), glm::vec3(1, 2, 3));
+  EXPECT_EQ(ts[0]->location().line, 7);
+  EXPECT_EQ(ts[0]->location().column, 5);
+}
+
+TEST(Loader, DefaultContainerFieldsFillTheRightParentFields) {
+  auto r = load(x3d(R"(<Shape><Appearance><Material diffuseColor="1 0 0"/></Appearance><Sphere radius="2"/></Shape>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto shapes = r.scene->nodesOfType<Shape>();
+  ASSERT_EQ(shapes.size(), 1u);
+  ASSERT_TRUE(shapes[0]->geometry.get());
+  EXPECT_EQ(shapes[0]->geometry.get()->typeName(), "Sphere");
+  EXPECT_EQ(r.scene->nodesOfType<Material>()[0]->diffuseColor.get().rgb, glm::vec3(1, 0, 0));
+}
+
+TEST(Loader, ExplicitContainerFieldOverridesTheDefault) {
+  // A Group placed in a Transform's children by name, a Sphere by explicit containerField.
+  auto r = load(x3d(R"(<Shape><Sphere containerField="geometry"/></Shape>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto bad = load(x3d(R"(<Shape><Sphere containerField="appearance"/></Shape>)"));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(firstError(bad).message.find("field 'appearance' of Shape: that field takes X3DAppearanceNode"),
+            std::string::npos)
+      << bad.report();
+}
+
+TEST(Loader, DefAndUseShareOneNode) {
+  auto r = load(x3d(R"(<Transform DEF="A"><Shape DEF="S"><Sphere/></Shape></Transform>
+<Transform DEF="B"><Shape USE="S"/></Transform>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto a = std::dynamic_pointer_cast<Transform>(r.scene->def("A"));
+  auto b = std::dynamic_pointer_cast<Transform>(r.scene->def("B"));
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->children.get()[0].get(), b->children.get()[0].get());
+  EXPECT_EQ(r.scene->nodeCount(), 4u);  // the shared Shape counts once
+  EXPECT_NE(describeScene(*r.scene).find("USE S"), std::string::npos);
+}
+
+TEST(Loader, RoutesAreMadeAndTypeChecked) {
+  auto r = load(x3d(R"(<Transform DEF="A" translation="1 1 1"/><Transform DEF="B"/>
+<ROUTE fromNode="A" fromField="translation_changed" toNode="B" toField="set_translation"/>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto a = std::dynamic_pointer_cast<Transform>(r.scene->def("A"));
+  auto b = std::dynamic_pointer_cast<Transform>(r.scene->def("B"));
+  EXPECT_EQ(b->translation.get(), glm::vec3(1, 1, 1));
+  a->translation.set(glm::vec3(0, 2, 0));
+  EXPECT_EQ(b->translation.get(), glm::vec3(0, 2, 0));
+  ASSERT_EQ(r.scene->routes.size(), 1u);
+
+  auto bad = load(x3d(R"(<Transform DEF="A"/><Transform DEF="B"/>
+<ROUTE fromNode="A" fromField="translation" toNode="B" toField="rotation"/>)"));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(firstError(bad).where.line, 5);
+  EXPECT_NE(firstError(bad).message.find("SFVec3f cannot be routed to SFRotation"), std::string::npos);
+}
+
+TEST(Loader, ErrorsNameFileLineColumnValueAndExpectation) {
+  auto r = load(x3d("<Transform\n   translation=\"1 2\"/>"));
+  ASSERT_FALSE(r.ok());
+  const auto& e = firstError(r);
+  EXPECT_EQ(e.where.file, "test.x3d");
+  EXPECT_EQ(e.where.line, 5);
+  EXPECT_EQ(e.where.column, 4);
+  EXPECT_NE(e.message.find("bad value '1 2' for SFVec3f field 'translation' of Transform"), std::string::npos);
+  EXPECT_NE(e.message.find("expected 3 numbers"), std::string::npos);
+  EXPECT_EQ(e.str().rfind("test.x3d:5:4: error: ", 0), 0u);
+}
+
+TEST(Loader, UnknownNamesGetSuggestions) {
+  auto r = load(x3d(R"(<Tranform/>)"));
+  EXPECT_NE(firstError(r).message.find("unknown node type 'Tranform'; did you mean 'Transform'?"), std::string::npos);
+  auto f = load(x3d(R"(<Transform translaton="0 0 0"/>)"));
+  EXPECT_NE(firstError(f).message.find("did you mean 'translation'?"), std::string::npos);
+  EXPECT_EQ(firstError(f).where.column, 12);
+}
+
+TEST(Loader, SeveralErrorsAreReportedTogether) {
+  auto r = load(x3d(R"(<Transform translation="x"/><Sphere/><Group bboxSize="1"/>)"));
+  ASSERT_FALSE(r.ok());
+  int errors = 0;
+  for (const auto& d : r.diagnostics) errors += d.severity == Severity::Error;
+  EXPECT_EQ(errors, 3) << r.report();
+}
+
+TEST(Loader, InlineLoadsRelativeToTheIncludingFileWithPrivateDefs) {
+  ScratchDir dir;
+  dir.write("parts/tool.x3d", x3d(R"(<Transform DEF="T" translation="0 1 0"><Shape><Cylinder/></Shape></Transform>)"));
+  auto main = dir.write("main.x3d", x3d(R"(<Transform DEF="T"/><Inline url='"missing.x3d" "parts/tool.x3d"'/>)"));
+  auto r = loadSceneFile(main, builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto inl = r.scene->nodesOfType<Inline>();
+  ASSERT_EQ(inl.size(), 1u);
+  ASSERT_EQ(inl[0]->loaded.get().size(), 1u);
+  EXPECT_EQ(r.scene->nodesOfType<Transform>().size(), 2u);  // both DEF T: separate namespaces
+  EXPECT_EQ(r.scene->defs.size(), 1u);
+}
+
+TEST(Loader, InlineErrorsPointIntoTheIncludedFile) {
+  ScratchDir dir;
+  dir.write("bad.x3d", x3d("<Sphere radius=\"-1\"/>"));
+  auto main = dir.write("main.x3d", x3d(R"(<Inline url='"bad.x3d"'/>)"));
+  auto r = loadSceneFile(main, builtinRegistry());
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(firstError(r).where.file.find("bad.x3d"), std::string::npos);
+  EXPECT_EQ(firstError(r).where.line, 4);
+}
+
+TEST(Loader, InlineCyclesAndNetworkUrlsAreRefused) {
+  ScratchDir dir;
+  dir.write("a.x3d", x3d(R"(<Inline url='"b.x3d"'/>)"));
+  dir.write("b.x3d", x3d(R"(<Inline url='"a.x3d"'/>)"));
+  auto r = loadSceneFile(dir.path() / "a.x3d", builtinRegistry());
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.report().find("Inline cycle"), std::string::npos) << r.report();
+  auto net = load(x3d(R"(<Inline url='"http://example.org/x.x3d"'/>)"));
+  EXPECT_FALSE(net.ok());
+}
+
+TEST(Loader, NoFileAccessModeRefusesInline) {
+  LoadOptions options;
+  options.allowFileAccess = false;
+  auto r = loadSceneString(x3d(R"(<Inline url='"x.x3d"'/>)"), "t.x3d", builtinRegistry(), options);
+  EXPECT_FALSE(r.ok());
+}
+
+TEST(Loader, MissingFileIsAClearError) {
+  auto r = loadSceneFile("/nonexistent/scene.x3d", builtinRegistry());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.diagnostics[0].str(), "/nonexistent/scene.x3d: error: no such file");
+}
+
+TEST(Loader, EveryShippedSceneLoads) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(MILLSIM_SOURCE_DIR "/x3d")) {
+    if (entry.path().extension() != ".x3d") continue;
+    auto r = loadSceneFile(entry.path(), builtinRegistry());
+    EXPECT_TRUE(r.ok()) << entry.path() << "\n" << r.report();
+  }
+}

@@ -1,0 +1,98 @@
+// ImportLibrary: a node type from a plugin library, and the path rules.
+#include <gtest/gtest.h>
+
+#include "TestFiles.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/core/Plugin.h"
+#include "millsim/x3d/X3DLoader.h"
+
+using namespace millsim;
+using millsim::test::ScratchDir;
+using millsim::test::x3d;
+
+namespace {
+const std::filesystem::path kPluginDir = MILLSIM_BINARY_DIR "/tests/plugins";
+const std::string kPlugin = "libmillsim_sample_plugin.so";
+
+LoadOptions withSearchPath(std::vector<std::filesystem::path> dirs, bool allowAny = false) {
+  LoadOptions o;
+  o.plugins.searchPath = std::move(dirs);
+  o.plugins.allowAnyPath = allowAny;
+  return o;
+}
+}  // namespace
+
+TEST(Plugins, NodeFromAPluginFoundOnTheSearchPath) {
+  ScratchDir dir;
+  auto scene = dir.write("s.x3d", x3d(R"(<ImportLibrary url='"libmillsim_sample_plugin.so"'/>
+<Landmark DEF="L" label="mesial cusp" position="0 0.004 0" radius="0.0005"/>)"));
+  auto r = loadSceneFile(scene, builtinRegistry(), withSearchPath({kPluginDir}));
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto n = r.scene->def("L");
+  ASSERT_TRUE(n);
+  EXPECT_EQ(n->typeName(), "Landmark");
+  EXPECT_EQ(n->field("label")->toString(), "mesial cusp");
+  EXPECT_EQ(r.scene->plugins.size(), 1u);
+  // The plugin's types live in this scene's registry, not in the built-in one.
+  EXPECT_EQ(builtinRegistry().find("Landmark"), nullptr);
+}
+
+TEST(Plugins, ShortNamesAreExpandedAndTheSceneFolderIsSearched) {
+  ScratchDir dir;
+  std::filesystem::copy_file(kPluginDir / kPlugin, dir.path() / kPlugin);
+  auto scene = dir.write("s.x3d", x3d(R"(<ImportLibrary url='"millsim_sample_plugin"'/><Landmark/>)"));
+  auto r = loadSceneFile(scene, builtinRegistry(), withSearchPath({}));
+  EXPECT_TRUE(r.ok()) << r.report();
+}
+
+TEST(Plugins, PluginFieldsAreValidatedLikeBuiltIns) {
+  ScratchDir dir;
+  auto scene = dir.write("s.x3d", x3d(R"(<ImportLibrary url='"libmillsim_sample_plugin.so"'/>
+<Landmark radius="-1"/>)"));
+  auto r = loadSceneFile(scene, builtinRegistry(), withSearchPath({kPluginDir}));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.report().find("outside the expected range > 0"), std::string::npos) << r.report();
+}
+
+TEST(Plugins, AbsoluteAndParentPathsAreRefusedUnlessAllowed) {
+  ScratchDir dir;
+  const std::string abs = (kPluginDir / kPlugin).string();
+  auto absScene = dir.write("abs.x3d", x3d("<ImportLibrary url='\"" + abs + "\"'/>"));
+  auto r = loadSceneFile(absScene, builtinRegistry(), withSearchPath({}));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.report().find("refusing plugin path"), std::string::npos) << r.report();
+  EXPECT_NE(r.report().find("--allow-plugin-path"), std::string::npos);
+
+  auto sub = dir.path() / "sub";
+  std::filesystem::create_directories(sub);
+  std::filesystem::copy_file(kPluginDir / kPlugin, dir.path() / kPlugin);
+  auto upScene = dir.write("sub/up.x3d", x3d("<ImportLibrary url='\"../" + kPlugin + "\"'/>"));
+  auto up = loadSceneFile(upScene, builtinRegistry(), withSearchPath({}));
+  ASSERT_FALSE(up.ok());
+  EXPECT_NE(up.report().find("refusing plugin path"), std::string::npos);
+
+  EXPECT_TRUE(loadSceneFile(absScene, builtinRegistry(), withSearchPath({}, true)).ok());
+  EXPECT_TRUE(loadSceneFile(upScene, builtinRegistry(), withSearchPath({}, true)).ok());
+}
+
+TEST(Plugins, MissingOrForeignLibrariesAreClearErrors) {
+  ScratchDir dir;
+  auto missing = dir.write("m.x3d", x3d(R"(<ImportLibrary url='"libnothere.so"'/>)"));
+  auto r = loadSceneFile(missing, builtinRegistry(), withSearchPath({}));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.report().find("not found; looked in"), std::string::npos) << r.report();
+
+  dir.write("libfake.so", "not an ELF file");
+  auto fake = dir.write("f.x3d", x3d(R"(<ImportLibrary url='"libfake.so"'/>)"));
+  auto f = loadSceneFile(fake, builtinRegistry(), withSearchPath({}));
+  ASSERT_FALSE(f.ok());
+  EXPECT_NE(f.report().find("cannot load plugin"), std::string::npos) << f.report();
+}
+
+TEST(Plugins, EnvironmentSearchPathIsColonSeparated) {
+  setenv("MILLSIM_PLUGIN_PATH", "/a:/b/c::/d", 1);
+  auto dirs = pluginPathFromEnvironment();
+  unsetenv("MILLSIM_PLUGIN_PATH");
+  ASSERT_EQ(dirs.size(), 3u);
+  EXPECT_EQ(dirs[1], "/b/c");
+}
