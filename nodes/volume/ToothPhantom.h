@@ -1,0 +1,38 @@
+#pragma once
+// The embedded default volume: a deterministic, anatomically plausible lower
+// molar in Hounsfield-like units — enamel crown, dentin, pulp chamber with
+// horns, two roots with canals, and an optional bone socket with a periodontal
+// ligament gap. The tooth's long axis is +Y (crown up, the X3D "up"), so a
+// tool coming from above mills the occlusal surface.
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+struct ToothPhantomOptions {
+  glm::ivec3 dims{256, 256, 176};   // as the paper's CT data
+  double voxelSize = 0.1e-3;        // metres; the tooth is about 11 x 21 x 10 mm
+  bool socket = false;              // surround the roots with bone
+};
+
+// Hounsfield-like values the phantom uses.
+struct ToothDensities {
+  static constexpr float air = -1000.f;
+  static constexpr float softTissue = 40.f;  // pulp, ligament
+  static constexpr float bone = 900.f;
+  static constexpr float dentin = 1600.f;
+  static constexpr float enamel = 2800.f;
+};
+
+// Parses "phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1]". Throws VolumeError.
+ToothPhantomOptions parsePhantomUrl(const std::string& url);
+// Builds the phantom; the size is scaled so the tooth fills the same fraction
+// of the volume whatever the voxel count (voxelSize then follows from dims).
+VoxelVolume makeToothPhantom(const ToothPhantomOptions& options);
+// Density of the phantom at a point (metres, tooth frame centred like the volume).
+float toothPhantomDensity(const glm::dvec3& p, bool socket);
+
+}  // namespace millsim

@@ -1,0 +1,37 @@
+#pragma once
+// Reading and writing volume files. Every reader returns a VoxelVolume in
+// index space with the voxel size in metres (file spacings are millimetres in
+// all supported formats and are converted), or throws VolumeError naming the
+// file and the problem. Readers check sizes before allocating.
+#include <filesystem>
+#include <string>
+
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+struct LoadedVolume {
+  VoxelVolume volume;
+  std::string format;  // "vdb", "nrrd", "metaimage", "vti", "dicom", "phantom"
+  std::string source;  // the file, folder or phantom url that was read
+};
+
+// Dispatches on the url: "phantom:tooth[?options]" (see ToothPhantom.h), a
+// folder (DICOM series), or a file by extension: .vdb, .nrrd/.nhdr, .mha/.mhd,
+// .vti, .dcm. Relative paths are resolved against baseDir. Density values at
+// or below airValue become air (the sparse background).
+LoadedVolume loadVolume(const std::string& url, const std::filesystem::path& baseDir, float airValue);
+
+VoxelVolume readVdb(const std::filesystem::path& file, float airValue);
+VoxelVolume readNrrd(const std::filesystem::path& file, float airValue);       // .nrrd, .nhdr; raw or gzip
+VoxelVolume readMetaImage(const std::filesystem::path& file, float airValue);  // .mha, .mhd
+VoxelVolume readVti(const std::filesystem::path& file, float airValue);        // VTK XML image data
+// A folder of CT slices (or one slice file): rescale slope/intercept applied,
+// slices ordered by position along the slice normal; refuses non-CT modalities.
+VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue);
+
+// Writers used by `millsim phantom` and the tests. Spacing is written in millimetres.
+void writeVdb(const VoxelVolume& volume, const std::filesystem::path& file);
+void writeNrrd(const VoxelVolume& volume, const std::filesystem::path& file, bool gzip = false);
+
+}  // namespace millsim

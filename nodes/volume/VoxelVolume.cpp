@@ -1,0 +1,79 @@
+#include "millsim/volume/VoxelVolume.h"
+
+#include <cmath>
+#include <openvdb/tools/Dense.h>
+#include <openvdb/tools/Prune.h>
+
+namespace millsim {
+
+namespace {
+std::once_flag vdbInitialized;
+}
+
+VoxelVolume::VoxelVolume(Grid::Ptr grid, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue)
+    : grid_(std::move(grid)),
+      dims_(dims),
+      voxelSize_(voxelSize),
+      halfExtent_((glm::dvec3(dims) - 1.0) * 0.5),
+      airValue_(airValue) {
+  checkVolumeShape("volume", dims, voxelSize);
+  // Milling writes voxels in place: material must live in leaves, not tiles.
+  grid_->tree().voxelizeActiveTiles();
+}
+
+void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxelSize) {
+  if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
+    throw VolumeError(what + ": dimensions " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                      std::to_string(dims.z) + " are not all positive");
+  const std::uint64_t n = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+  if (n > kMaxVoxels)
+    throw VolumeError(what + ": dimensions " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                      std::to_string(dims.z) + " (" + std::to_string(n) + " voxels) exceed the limit of " +
+                      std::to_string(kMaxVoxels) + " voxels");
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(voxelSize[a]) || voxelSize[a] <= 0.0)
+      throw VolumeError(what + ": voxel size " + std::to_string(voxelSize[a]) + " along axis " + "xyz"[a] +
+                        " is not a positive finite number of metres");
+}
+
+VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue) {
+  checkVolumeShape("volume", dims, voxelSize);
+  std::call_once(vdbInitialized, [] { openvdb::initialize(); });
+  auto grid = Grid::create(airValue);
+  const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(dims.x - 1, dims.y - 1, dims.z - 1));
+  // LayoutXYZ: x is the fastest-changing index, as in the files we read.
+  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, const_cast<float*>(values));
+  // Values within this tolerance of air become background; copyFromDense runs in parallel.
+  openvdb::tools::copyFromDense(dense, *grid, /*tolerance=*/0.f);
+  grid->setName("density");
+  // Values at or below air are air: they become inactive background, and
+  // blocks of nothing but air collapse to the sparse background.
+  for (auto it = grid->beginValueOn(); it; ++it)
+    if (*it <= airValue) {
+      it.setValue(airValue);
+      it.setValueOff();
+    }
+  openvdb::tools::pruneInactive(grid->tree());
+  return VoxelVolume(std::move(grid), dims, voxelSize, airValue);
+}
+
+std::uint64_t VoxelVolume::contentHash() const {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* p, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  mix(&dims_, sizeof dims_);
+  mix(&voxelSize_, sizeof voxelSize_);
+  auto acc = grid_->getConstAccessor();
+  for (int k = 0; k < dims_.z; ++k)
+    for (int j = 0; j < dims_.y; ++j)
+      for (int i = 0; i < dims_.x; ++i) {
+        float v = acc.getValue(openvdb::Coord(i, j, k));
+        if (!acc.isValueOn(openvdb::Coord(i, j, k))) v = airValue_;
+        mix(&v, sizeof v);
+      }
+  return h;
+}
+
+}  // namespace millsim
