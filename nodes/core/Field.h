@@ -132,7 +132,7 @@ protected:
     if (!range_) return;
     X3DValue<T>::numbers(v, [&](double x) {
       if (!range_->contains(x))
-        throw ValueError("value " + formatNumber(x) + " is outside the expected range " + range_->str());
+        throw ValueError("value " + formatComponent(x) + " is outside the expected range " + range_->str());
     });
   }
   void assignFrom(const Field& source) override { value_ = static_cast<const SField&>(source).get(); }
@@ -176,10 +176,11 @@ public:
 protected:
   void check(const std::vector<T>& v) const {
     if (!range_) return;
-    for (const T& item : v)
-      X3DValue<T>::numbers(item, [&](double x) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      X3DValue<T>::numbers(v[i], [&](double x) {
         if (!range_->contains(x))
-          throw ValueError("value " + formatNumber(x) + " is outside the expected range " + range_->str());
+          throw ValueError("item " + std::to_string(i + 1) + ": value " + formatComponent(x) +
+                           " is outside the expected range " + range_->str());
       });
   }
   void assignFrom(const Field& source) override { value_ = static_cast<const MField&>(source).get(); }

@@ -43,6 +43,9 @@ template <class T> T readReal(ValueLexer& lx, const char* what) {
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
   T v{};
   auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+  if (ec == std::errc::result_out_of_range && p == digits.data() + digits.size())
+    throw ValueError(quoteForMessage(tok) + " is out of range for a " +
+                     (sizeof(T) == 4 ? "32-bit float (about ±3.4e38)" : "64-bit double (about ±1.8e308)"));
   if (ec != std::errc() || p != digits.data() + digits.size())
     throw ValueError(std::string("expected ") + what + ", found " + quoteForMessage(tok));
   if (!std::isfinite(v)) throw ValueError(std::string("expected a finite number, found ") + quoteForMessage(tok));

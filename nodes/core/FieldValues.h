@@ -87,6 +87,10 @@ struct Range {
 
 std::string formatNumber(double v);
 std::string formatNumber(float v);
+// A number that came from a float component, printed as that float (0.1, not 0.10000000149).
+inline std::string formatComponent(double v) {
+  return double(float(v)) == v ? formatNumber(float(v)) : formatNumber(v);
+}
 
 // X3DValue<T>: read one value of T from the lexer, write it back, and list its numbers.
 template <class T> struct X3DValue;

@@ -23,6 +23,9 @@ public:
   // Offset of attribute `attr` inside the start tag beginning at `tagStart`.
   std::size_t findAttribute(std::size_t tagStart, std::string_view attr) const;
 
+  // Offset of `text` at or after the cursor (the cursor does not move).
+  std::size_t findText(std::string_view text) const { return text_.find(text, cursor_); }
+
   SourceLocation at(std::size_t offset) const;
   SourceLocation atLine(long line) const { return {file_, static_cast<int>(line), 0}; }
 

@@ -97,11 +97,23 @@ private:
       c->message = e->message ? e->message : "malformed XML";
       while (!c->message.empty() && (c->message.back() == '\n' || c->message.back() == ' ')) c->message.pop_back();
     };
+    const std::string& text = doc.src.text();
+    if (isBlank(text)) {
+      sink_.error({doc.src.file(), 1, 1}, "the file is empty; expected an <X3D> document");
+      return false;
+    }
+    // Entity declarations (and so expansion bombs) are refused before libxml2
+    // expands anything; only the prolog can declare them.
+    const std::size_t root = text.find("<X3D");
+    const std::size_t entity = text.find("<!ENTITY");
+    if (entity != std::string::npos && (root == std::string::npos || entity < root)) {
+      sink_.error(doc.src.at(entity), "entity declarations are not allowed in X3D scenes");
+      return false;
+    }
     xmlSetStructuredErrorFunc(&first, handler);
     // No NOENT (entities stay unexpanded), no DTDLOAD, no network.
     const int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES;
-    const std::string& t = doc.src.text();
-    doc.xml = xmlReadMemory(t.data(), static_cast<int>(t.size()), doc.src.file().c_str(), nullptr, opts);
+    doc.xml = xmlReadMemory(text.data(), static_cast<int>(text.size()), doc.src.file().c_str(), nullptr, opts);
     xmlSetStructuredErrorFunc(nullptr, nullptr);
     if (!doc.xml || first.have) {
       sink_.error({doc.src.file(), first.line, first.column},
@@ -109,8 +121,7 @@ private:
       return false;
     }
     if (doc.xml->intSubset && doc.xml->intSubset->entities) {
-      sink_.error(doc.src.atLine(xmlGetLineNo(reinterpret_cast<xmlNodePtr>(doc.xml->intSubset))),
-                  "entity declarations are not allowed in X3D scenes");
+      sink_.error({doc.src.file(), 0, 0}, "entity declarations are not allowed in X3D scenes");
       return false;
     }
     return true;
@@ -204,8 +215,12 @@ private:
     if (c->type == XML_TEXT_NODE || c->type == XML_CDATA_SECTION_NODE) {
       std::string text = c->content ? reinterpret_cast<const char*>(c->content) : "";
       if (!isBlank(text)) {
-        std::string shown = text.substr(text.find_first_not_of(" \t\r\n"), 30);
-        sink_.error(doc.src.atLine(xmlGetLineNo(c)),
+        const std::size_t first = text.find_first_not_of(" \t\r\n");
+        std::size_t lineEnd = text.find_first_of("\r\n", first);
+        std::string shown = text.substr(first, std::min<std::size_t>(lineEnd == std::string::npos ? 40 : lineEnd - first, 40));
+        while (!shown.empty() && (shown.back() == ' ' || shown.back() == '\t')) shown.pop_back();
+        const std::size_t at = doc.src.findText(shown);
+        sink_.error(at == std::string::npos ? doc.src.atLine(xmlGetLineNo(c)) : doc.src.at(at),
                     "unexpected text '" + shown + "' inside <" + std::string(parent) + ">; only elements belong here");
       }
     } else if (c->type == XML_ENTITY_REF_NODE) {
@@ -229,6 +244,13 @@ private:
     if (!target.accepts(*node)) {
       sink_.error(loc, node->typeName() + " cannot go in field '" + std::string(target.name()) + "' of " +
                            std::string(parentLabel) + ": that field takes " + std::string(target.acceptsKind()));
+      return;
+    }
+    if (const auto held = target.type() == FieldType::SFNode ? target.nodes() : std::vector<std::shared_ptr<Node>>{};
+        !held.empty()) {
+      sink_.error(loc, node->typeName() + " cannot go in field '" + std::string(target.name()) + "' of " +
+                           std::string(parentLabel) + ": it already holds the " + held.front()->typeName() + " at " +
+                           held.front()->location().str() + " (an SFNode field takes one node)");
       return;
     }
     try {
@@ -363,14 +385,14 @@ private:
         sink_.error(at, "unknown field '" + std::string(n) + "' of " + node.typeName() + didYouMean(closestNames(n, names)));
         continue;
       }
-      if (f->isNodeField()) {
-        sink_.error(at, "field '" + std::string(n) + "' of " + node.typeName() +
-                            " takes a child node element, not an attribute value");
-        continue;
-      }
       if (!settableInFile(f->access())) {
         sink_.error(at, "field '" + std::string(n) + "' of " + node.typeName() + " is " +
                             std::string(accessName(f->access())) + " and cannot be set in a file");
+        continue;
+      }
+      if (f->isNodeField()) {
+        sink_.error(at, "field '" + std::string(n) + "' of " + node.typeName() +
+                            " takes a child node element, not an attribute value");
         continue;
       }
       const std::string value = attrValue(doc.xml, a);
