@@ -28,6 +28,8 @@ private:
   std::map<std::string, NodeType, std::less<>> types_;
 };
 
+// The standard X3D node types MillSim provides.
+void registerStandardNodes(NodeRegistry& registry);
 // Every node type MillSim itself provides (standard X3D nodes and MillSim's own).
 void registerBuiltinNodes(NodeRegistry& registry);
 NodeRegistry builtinRegistry();

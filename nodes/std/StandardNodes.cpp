@@ -1,6 +1,4 @@
-// The explicit list of node types MillSim provides. New node types are added
-// here (or, for integrators, in a plugin's entry point), never by static
-// initialisers.
+// The standard X3D node types MillSim provides.
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/std/Appearance.h"
 #include "millsim/std/Background.h"
@@ -19,18 +17,12 @@
 
 namespace millsim {
 
-void registerBuiltinNodes(NodeRegistry& r) {
+void registerStandardNodes(NodeRegistry& r) {
   for (const NodeType* t : {&Appearance::type(), &Background::type(), &Box::type(), &Cylinder::type(),
                             &Group::type(), &ImportLibrary::type(), &Inline::type(), &Material::type(),
                             &NavigationInfo::type(), &Shape::type(), &Sphere::type(), &Transform::type(),
                             &Viewpoint::type(), &WorldInfo::type()})
     r.add(*t);
-}
-
-NodeRegistry builtinRegistry() {
-  NodeRegistry r;
-  registerBuiltinNodes(r);
-  return r;
 }
 
 }  // namespace millsim

@@ -1,6 +1,7 @@
 #include "millsim/volume/VoxelVolume.h"
 
 #include <cmath>
+#include <mutex>
 #include <openvdb/tools/Dense.h>
 #include <openvdb/tools/Prune.h>
 

@@ -1,0 +1,40 @@
+// What `millsim check` says about each VolumeObject: size, spacing, memory and
+// point-shell counts (the shells are built for the report only).
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+
+#include "VolumeReport.h"
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim::app {
+
+std::string describeVolumes(const Scene& scene) {
+  std::ostringstream out;
+  out << std::fixed;
+  for (VolumeObject* vo : scene.nodesOfType<VolumeObject>()) {
+    const VoxelVolume* v = vo->volume();
+    if (!v) continue;
+    const std::string name = vo->defName().empty() ? std::string() : " '" + vo->defName() + "'";
+    out << "VolumeObject" << name << ": " << vo->loadedUrl.get() << " (" << vo->format() << ")\n"
+        << "  dimensions " << v->dims().x << " x " << v->dims().y << " x " << v->dims().z << " voxels, voxel size "
+        << std::setprecision(4) << v->voxelSize().x * 1e3 << " x " << v->voxelSize().y * 1e3 << " x "
+        << v->voxelSize().z * 1e3 << " mm\n"
+        << "  active voxels " << v->activeVoxels() << ", grid memory " << std::setprecision(1)
+        << double(v->memoryBytes()) / (1024.0 * 1024.0) << " MiB\n";
+    out << "  point shell (isoValue " << std::setprecision(0) << vo->isoValue.get() << "):";
+    for (int scale : {1, 2, 3}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      PointShell shell(*v, vo->isoValue.get(), scale);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      out << " scale " << scale << ": " << shell.size() << " points (" << std::setprecision(0) << ms << " ms, "
+          << std::setprecision(1) << double(shell.memoryBytes()) / (1024.0 * 1024.0) << " MiB)"
+          << (scale < 3 ? ";" : "\n");
+    }
+  }
+  return out.str();
+}
+
+}  // namespace millsim::app

@@ -1,0 +1,94 @@
+// Volume costs on the tooth phantom: building it, sampling densities, one
+// milling stamp, the point shell and its incremental update.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "millsim/volume/Milling.h"
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VolumeSampler.h"
+
+using namespace millsim;
+
+namespace {
+
+const VoxelVolume& phantom() {
+  static const VoxelVolume v = makeToothPhantom(ToothPhantomOptions{});
+  return v;
+}
+
+void BM_PhantomBuild(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(makeToothPhantom(ToothPhantomOptions{}).activeVoxels());
+}
+BENCHMARK(BM_PhantomBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// Points anywhere in the volume.
+void BM_SampleRandom(benchmark::State& state) {
+  const auto& v = phantom();
+  VolumeSampler s(v);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> ux(0, v.dims().x - 1), uy(0, v.dims().y - 1), uz(0, v.dims().z - 1);
+  std::vector<glm::dvec3> pts(4096);
+  for (auto& p : pts) p = {ux(rng), uy(rng), uz(rng)};
+  for (auto _ : state)
+    for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
+  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+}
+BENCHMARK(BM_SampleRandom);
+
+// Points in a small cluster near the occlusal surface, as a tool's samples are.
+void BM_SampleNearSurface(benchmark::State& state) {
+  const auto& v = phantom();
+  VolumeSampler s(v);
+  std::mt19937 rng(2);
+  std::normal_distribution<double> n(0.0, 10.0);
+  const glm::dvec3 c = v.localToIndex({0.0, 8.5e-3, 0.0});
+  std::vector<glm::dvec3> pts(4096);
+  for (auto& p : pts) p = c + glm::dvec3(n(rng), n(rng), n(rng));
+  for (auto _ : state)
+    for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
+  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+}
+BENCHMARK(BM_SampleNearSurface);
+
+void BM_MillStamp(benchmark::State& state) {
+  VoxelVolume v = makeToothPhantom(ToothPhantomOptions{});
+  Miller miller(v, 700.f);
+  DirtyBlocks dirty(v.dims());
+  double y = 9.5e-3;
+  for (auto _ : state) {
+    // Drill downwards a little each stamp so every stamp removes material.
+    miller.stamp({0.0, y, 0.0}, 0.5e-3, dirty);
+    y -= 0.005e-3;
+    dirty.clear();
+  }
+}
+BENCHMARK(BM_MillStamp)->Unit(benchmark::kMicrosecond)->Iterations(1000);
+
+void BM_PointShellBuild(benchmark::State& state) {
+  const auto& v = phantom();
+  std::size_t n = 0;
+  for (auto _ : state) n = PointShell(v, 700.f, int(state.range(0))).size();
+  state.counters["points"] = double(n);
+}
+BENCHMARK(BM_PointShellBuild)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+
+void BM_PointShellUpdateAfterStamp(benchmark::State& state) {
+  VoxelVolume v = makeToothPhantom(ToothPhantomOptions{});
+  PointShell shell(v, 700.f, int(state.range(0)));
+  Miller miller(v, 700.f);
+  DirtyBlocks dirty(v.dims());
+  double y = 9.5e-3;
+  for (auto _ : state) {
+    state.PauseTiming();
+    miller.stamp({0.0, y, 0.0}, 0.5e-3, dirty);
+    y -= 0.005e-3;
+    state.ResumeTiming();
+    shell.update(v, dirty.origins());
+    dirty.clear();
+  }
+}
+BENCHMARK(BM_PointShellUpdateAfterStamp)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond)->Iterations(500);
+
+}  // namespace

@@ -1,0 +1,26 @@
+// The explicit list of node types MillSim provides. New node types are added
+// here (or, for integrators, in a plugin's entry point), never by static
+// initialisers.
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/haptics/LineProxyRenderer.h"
+#include "millsim/haptics/MillTool.h"
+#include "millsim/haptics/SurfacePointRenderer.h"
+#include "millsim/haptics/TrajectoryDevice.h"
+#include "millsim/volume/VolumeObject.h"
+
+namespace millsim {
+
+void registerBuiltinNodes(NodeRegistry& r) {
+  registerStandardNodes(r);
+  for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
+                            &SurfacePointRenderer::type(), &TrajectoryDevice::type()})
+    r.add(*t);
+}
+
+NodeRegistry builtinRegistry() {
+  NodeRegistry r;
+  registerBuiltinNodes(r);
+  return r;
+}
+
+}  // namespace millsim

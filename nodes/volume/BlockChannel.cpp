@@ -1,0 +1,61 @@
+#include "millsim/volume/BlockChannel.h"
+
+namespace millsim {
+
+namespace {
+// Index of voxel (x, y, z) inside a block, x fastest.
+constexpr int cell(int x, int y, int z) { return (z * 8 + y) * 8 + x; }
+}  // namespace
+
+bool BlockChannel::tryPush(const VoxelVolume& volume, const openvdb::Coord& origin) {
+  const std::size_t head = head_.load(std::memory_order_relaxed);
+  const std::size_t next = (head + 1) % slots_.size();
+  if (next == tail_.load(std::memory_order_acquire)) return false;
+  BlockUpdate& slot = slots_[head];
+  slot.origin = origin;
+  if (const auto* leaf = volume.grid().tree().probeConstLeaf(origin)) {
+    for (int z = 0; z < 8; ++z)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) slot.values[cell(x, y, z)] = leaf->getValue(openvdb::Coord(x, y, z) + origin);
+  } else {
+    slot.values.fill(volume.airValue());  // an all-air block has no leaf
+  }
+  head_.store(next, std::memory_order_release);
+  return true;
+}
+
+std::size_t BlockPublisher::publish(const std::vector<openvdb::Coord>& changed) {
+  for (const auto& o : changed) pending_.markVoxel(o.x(), o.y(), o.z());
+  std::size_t pushed = 0;
+  for (const auto& o : pending_.origins()) {
+    if (!channel_.tryPush(volume_, o)) break;
+    ++pushed;
+  }
+  pending_.dropFront(pushed);
+  return pending_.origins().size();
+}
+
+VolumeReplica::VolumeReplica(const VoxelVolume& source)
+    : volume_(std::make_unique<VoxelVolume>(source.grid().deepCopy(), source.dims(), source.voxelSize(),
+                                            source.airValue())),
+      changed_(source.dims()) {}
+
+const std::vector<openvdb::Coord>& VolumeReplica::apply(BlockChannel& channel) {
+  changed_.clear();
+  auto acc = volume_->grid().getAccessor();
+  const float air = volume_->airValue();
+  channel.drain([&](const BlockUpdate& u) {
+    for (int z = 0; z < 8; ++z)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+          const openvdb::Coord c = u.origin + openvdb::Coord(x, y, z);
+          const float v = u.values[cell(x, y, z)];
+          // Only touch voxels that differ: unchanged air stays sparse.
+          if (acc.getValue(c) != v && !(v <= air && !acc.isValueOn(c))) acc.setValueOnly(c, v);
+        }
+    changed_.markVoxel(u.origin.x(), u.origin.y(), u.origin.z());
+  });
+  return changed_.origins();
+}
+
+}  // namespace millsim

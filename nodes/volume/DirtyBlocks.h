@@ -1,0 +1,59 @@
+#pragma once
+// DirtyBlocks: the set of 8³ voxel blocks (OpenVDB leaf nodes) changed since
+// the consumer last took them. A bitset over the volume's block grid plus a
+// list with capacity for every block, so marking never allocates.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <openvdb/openvdb.h>
+
+namespace millsim {
+
+class DirtyBlocks {
+public:
+  static constexpr int kLog2 = 3;  // 8³ voxels: OpenVDB's leaf size
+  static constexpr int kSize = 1 << kLog2;
+
+  DirtyBlocks() = default;
+  explicit DirtyBlocks(glm::ivec3 dims)
+      : blocks_((dims + kSize - 1) / kSize),
+        bits_(std::size_t(blocks_.x) * blocks_.y * blocks_.z, false) {
+    list_.reserve(bits_.size());
+  }
+
+  // Marks the block holding voxel (i, j, k); voxels outside the volume are ignored.
+  void markVoxel(int i, int j, int k) {
+    const int bx = i >> kLog2, by = j >> kLog2, bz = k >> kLog2;
+    if (i < 0 || j < 0 || k < 0 || bx >= blocks_.x || by >= blocks_.y || bz >= blocks_.z) return;
+    const std::size_t idx = (std::size_t(bz) * blocks_.y + by) * blocks_.x + bx;
+    if (bits_[idx]) return;
+    bits_[idx] = true;
+    list_.emplace_back(bx << kLog2, by << kLog2, bz << kLog2);
+  }
+
+  // Leaf origins marked so far, in the order they were first marked.
+  const std::vector<openvdb::Coord>& origins() const { return list_; }
+  bool empty() const { return list_.empty(); }
+  // Forgets the first n marked blocks, keeping the rest in order (in place).
+  void dropFront(std::size_t n) {
+    n = std::min(n, list_.size());
+    for (std::size_t i = 0; i < n; ++i) unmark(list_[i]);
+    list_.erase(list_.begin(), list_.begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  void clear() {
+    for (const auto& c : list_) unmark(c);
+    list_.clear();
+  }
+
+private:
+  void unmark(const openvdb::Coord& c) {
+    bits_[(std::size_t(c.z() >> kLog2) * blocks_.y + (c.y() >> kLog2)) * blocks_.x + (c.x() >> kLog2)] = false;
+  }
+  glm::ivec3 blocks_{0};
+  std::vector<bool> bits_;
+  std::vector<openvdb::Coord> list_;
+};
+
+}  // namespace millsim

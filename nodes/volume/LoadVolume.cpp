@@ -1,0 +1,88 @@
+// loadVolume: picks the reader for a VolumeObject url.
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <string>
+
+#include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VolumeIO.h"
+
+namespace fs = std::filesystem;
+
+namespace millsim {
+
+namespace {
+
+const char* const kSupported =
+    ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, or phantom:tooth";
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// "scheme:" at the start of a url (two or more letters, so that "C:" is not one).
+std::string urlScheme(const std::string& url) {
+  std::size_t i = 0;
+  while (i < url.size() && (std::isalnum(static_cast<unsigned char>(url[i])) || url[i] == '+' || url[i] == '-' ||
+                            url[i] == '.'))
+    ++i;
+  if (i >= 2 && i < url.size() && url[i] == ':' && std::isalpha(static_cast<unsigned char>(url[0])))
+    return lower(url.substr(0, i));
+  return "";
+}
+
+// DICOM Part 10 files carry "DICM" after a 128-byte preamble; slices often have no extension.
+bool hasDicomMagic(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char b[132];
+  return in.read(b, 132) && b[128] == 'D' && b[129] == 'I' && b[130] == 'C' && b[131] == 'M';
+}
+
+}  // namespace
+
+LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue) {
+  if (url.empty()) throw VolumeError("(empty url): no volume file given (expected " + std::string(kSupported) + ")");
+  const std::string scheme = urlScheme(url);
+  if (scheme == "phantom") return LoadedVolume{makeToothPhantom(parsePhantomUrl(url)), "phantom", url};
+
+  std::string pathText = url;
+  if (scheme == "file") {
+    // file:///abs/path or file:relative/path
+    pathText = url.substr(5);
+    if (pathText.rfind("//", 0) == 0) {
+      pathText = pathText.substr(2);
+      if (!pathText.empty() && pathText[0] != '/') {
+        const std::size_t slash = pathText.find('/');
+        const std::string host = pathText.substr(0, slash);
+        if (host != "localhost")
+          throw VolumeError(url + ": file urls on other hosts are not supported (only local files)");
+        pathText = slash == std::string::npos ? "" : pathText.substr(slash);
+      }
+    }
+  } else if (!scheme.empty()) {
+    throw VolumeError(url + ": '" + scheme + ":' urls are not supported; volumes are read from local files only (" +
+                      kSupported + ")");
+  }
+
+  fs::path path(pathText);
+  if (path.is_relative() && !baseDir.empty()) path = baseDir / path;
+  path = path.lexically_normal();
+  const std::string name = path.string();
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) throw VolumeError(name + ": no such file or folder");
+  if (fs::is_directory(st)) return LoadedVolume{readDicom(path, airValue), "dicom", name};
+
+  const std::string ext = lower(path.extension().string());
+  if (ext == ".vdb") return LoadedVolume{readVdb(path, airValue), "vdb", name};
+  if (ext == ".nrrd" || ext == ".nhdr") return LoadedVolume{readNrrd(path, airValue), "nrrd", name};
+  if (ext == ".mha" || ext == ".mhd") return LoadedVolume{readMetaImage(path, airValue), "metaimage", name};
+  if (ext == ".vti") return LoadedVolume{readVti(path, airValue), "vti", name};
+  if (ext == ".dcm" || ext == ".dicom" || (ext.empty() && hasDicomMagic(path)))
+    return LoadedVolume{readDicom(path, airValue), "dicom", name};
+  throw VolumeError(name + ": unknown volume file extension '" + path.extension().string() + "' (supported: " +
+                    kSupported + ")");
+}
+
+}  // namespace millsim

@@ -1,0 +1,53 @@
+#include "millsim/volume/Milling.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
+
+namespace millsim {
+
+Miller::Miller(VoxelVolume& volume, float isoValue)
+    : volume_(volume), acc_(volume.grid().getAccessor()), iso_(isoValue) {}
+
+StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlocks& dirty) {
+  StampResult result;
+  if (!(radius > 0.0) || !std::isfinite(centreLocal.x + centreLocal.y + centreLocal.z)) return result;
+  const glm::dvec3 h = volume_.voxelSize();
+  const double ramp = (h.x + h.y + h.z) / 3.0;
+  const float air = volume_.airValue();
+  const double phiScale = 1.0 / (2.0 * (double(iso_) - air));
+  const double voxelVolume = h.x * h.y * h.z;
+  auto phi = [&](double v) { return std::clamp((v - air) * phiScale, 0.0, 1.0); };
+
+  // Voxels whose centres can be touched: within radius + half a ramp.
+  const glm::dvec3 c = volume_.localToIndex(centreLocal);
+  const glm::dvec3 reach = (radius + 0.5 * ramp) / h;
+  const glm::ivec3 dims = volume_.dims();
+  const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(c - reach)), glm::ivec3(0));
+  const glm::ivec3 hi = glm::min(glm::ivec3(glm::ceil(c + reach)), dims - 1);
+  for (int k = lo.z; k <= hi.z; ++k)
+    for (int j = lo.y; j <= hi.y; ++j)
+      for (int i = lo.x; i <= hi.x; ++i) {
+        const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
+        const double coverage = std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0);
+        if (coverage <= 0.0) continue;
+        const openvdb::Coord xyz(i, j, k);
+        const float old = acc_.getValue(xyz);
+        if (old <= air) continue;  // nothing to remove (and air may live in a tile: never write there)
+        // The density that leaves the voxel a (1 − coverage) material fraction:
+        // on the sphere's surface (coverage ½) that is exactly the iso-value.
+        const float now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
+        if (now >= old) continue;
+        acc_.setValueOnly(xyz, now);
+        result.removedVolume += (phi(old) - phi(now)) * voxelVolume;
+        ++result.voxelsChanged;
+        dirty.markVoxel(i, j, k);
+      }
+  totalRemoved_ += result.removedVolume;
+  return result;
+}
+
+}  // namespace millsim

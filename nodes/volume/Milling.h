@@ -1,0 +1,47 @@
+#pragma once
+// Material removal by the burr, inside the haptic frame.
+//
+// The paper takes its removal model from its ref. [1], which is not given, so
+// MillSim uses this rule (docs/algorithms.md, "Milling"): a stamp of a burr of
+// radius r at centre c covers each voxel by coverage = clamp(0.5 + (r − |x − c|)/h,
+// 0, 1), h the mean voxel size, and lowers its density to what leaves a
+// material fraction of (1 − coverage):
+//     v ← min(v, air + 2·(iso − air)·(1 − coverage)).
+// With φ(v) = clamp((v − air) / (2·(iso − air)), 0, 1) the material fraction
+// (φ = ½ on the iso-surface), the new iso-surface lies on the sphere, voxels
+// fully inside become air, a stamp never adds material, and stamping the same
+// place again changes nothing (so holding the burr still does not widen the
+// hole). Removed volume is Σ (φ(old) − φ(new)) × voxel volume.
+#include <glm/vec3.hpp>
+
+#include "millsim/volume/DirtyBlocks.h"
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+struct StampResult {
+  double removedVolume = 0.0;  // m³
+  int voxelsChanged = 0;
+};
+
+// The writer's side of milling. Holds its own accessor: use one Miller per
+// writing thread, and no other thread may read the grid while it writes (see
+// VolumeReplica for how graphics gets the changes).
+class Miller {
+public:
+  Miller(VoxelVolume& volume, float isoValue);
+
+  // Stamps a burr sphere given in the volume's local frame (metres). Marks
+  // every changed block in `dirty`. Does not allocate.
+  StampResult stamp(const glm::dvec3& centreLocal, double radius, DirtyBlocks& dirty);
+
+  double totalRemoved() const { return totalRemoved_; }
+
+private:
+  VoxelVolume& volume_;
+  VoxelVolume::Grid::Accessor acc_;
+  float iso_;
+  double totalRemoved_ = 0.0;
+};
+
+}  // namespace millsim

@@ -1,0 +1,109 @@
+#pragma once
+// PointShell: the paper's point shell of the milled object (Algorithm #3's
+// "MPO"): the centres of its surface voxels with outward normals. A surface
+// voxel is inside (density > iso) with at least one of its six neighbours
+// outside. With scale s > 1 (the paper's reduced resolution) the volume is
+// first averaged over s³ blocks and the surface voxels of that coarse field are
+// used, which gives roughly 1/s² as many points.
+//
+// Points are bucketed by blocks of 8³ coarse voxels, and buckets by groups of
+// 4³ (super-buckets), each with a tight bounding box: a box query visits only
+// the super-buckets and buckets whose boxes overlap (the paper's octree). After
+// milling, update() rebuilds only the buckets near the changed voxel blocks, in
+// place: capacity for every bucket that holds material is reserved up front, so
+// an update never allocates.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
+#include <openvdb/openvdb.h>
+
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+struct ShellPoint {
+  glm::vec3 position;  // volume-local frame, metres
+  glm::vec3 normal;    // unit, pointing out of the material
+};
+
+struct Aabb {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{-std::numeric_limits<float>::max()};
+  bool empty() const { return lo.x > hi.x; }
+  void add(const glm::vec3& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+  void add(const Aabb& b) {
+    if (!b.empty()) lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi);
+  }
+  bool overlaps(const Aabb& b) const {
+    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y && lo.z <= b.hi.z && b.lo.z <= hi.z;
+  }
+};
+
+class PointShell {
+public:
+  static constexpr int kBucket = 8;  // coarse voxels per bucket edge
+  static constexpr int kSuper = 4;   // buckets per super-bucket edge
+
+  PointShell(const VoxelVolume& volume, float isoValue, int scale);
+
+  int scale() const { return scale_; }
+  std::size_t size() const { return count_; }
+  std::size_t memoryBytes() const;
+
+  // Rebuilds the buckets affected by changes in the given 8³ voxel blocks
+  // (leaf origins, as DirtyBlocks reports them). Returns the number of buckets rebuilt.
+  int update(const VoxelVolume& volume, const std::vector<openvdb::Coord>& dirtyLeafOrigins);
+
+  // Visits the points of every bucket whose bounding box `overlaps(Aabb)` accepts:
+  // the test is applied first to super-buckets, then to buckets.
+  template <class Overlaps, class Visit> void forEachCandidate(Overlaps&& overlaps, Visit&& visit) const {
+    for (const Super& s : supers_) {
+      if (s.count == 0 || !overlaps(s.box)) continue;
+      for (int b : s.buckets) {
+        const Bucket& bucket = buckets_[std::size_t(b)];
+        if (bucket.points.empty() || !overlaps(bucket.box)) continue;
+        for (const ShellPoint& p : bucket.points) visit(p);
+      }
+    }
+  }
+  // Every point, bucket by bucket (the brute-force path, for comparison).
+  template <class Visit> void forEach(Visit&& visit) const {
+    for (const Bucket& b : buckets_)
+      for (const ShellPoint& p : b.points) visit(p);
+  }
+  // All points in a stable order (bucket order, then scan order): for tests.
+  std::vector<ShellPoint> points() const;
+
+private:
+  struct Bucket {
+    std::vector<ShellPoint> points;
+    Aabb box;
+  };
+  struct Super {
+    std::vector<int> buckets;
+    Aabb box;
+    std::size_t count = 0;
+  };
+
+  float coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const;
+  void rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b);
+  void refreshSuper(int s);
+
+  const VoxelVolume* volume_;
+  float iso_;
+  int scale_;
+  glm::ivec3 coarseDims_;
+  glm::ivec3 bucketDims_;
+  glm::ivec3 superDims_;
+  std::vector<Bucket> buckets_;
+  std::vector<Super> supers_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace millsim

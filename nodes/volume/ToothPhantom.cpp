@@ -1,0 +1,174 @@
+#include "millsim/volume/ToothPhantom.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+namespace millsim {
+
+namespace {
+
+// All geometry is in millimetres, in the tooth frame: the volume's centre is
+// the origin, +Y runs from the root apices to the occlusal surface.
+constexpr double kCej = 2.0;  // cemento-enamel junction height
+
+double smin(double a, double b, double k) {  // smooth union of two distances
+  const double h = std::clamp(0.5 + 0.5 * (b - a) / k, 0.0, 1.0);
+  return b + (a - b) * h - k * h * (1.0 - h);
+}
+
+double sphere(const glm::dvec3& p, const glm::dvec3& c, double r) { return glm::length(p - c) - r; }
+
+// Approximate distance to an axis-aligned superellipsoid: exact on the axes,
+// good enough elsewhere because it only shapes a one-voxel anti-aliasing ramp.
+double superellipsoid(const glm::dvec3& p, const glm::dvec3& c, const glm::dvec3& r, double e) {
+  const glm::dvec3 q = glm::abs(p - c) / r;
+  const double xz = std::pow(std::pow(q.x, e) + std::pow(q.z, e), 2.0 / e);
+  const double f = std::sqrt(xz + q.y * q.y);
+  return (f - 1.0) * std::min({r.x, r.y, r.z});
+}
+
+// A cone with rounded ends from a (radius ra) to b (radius rb).
+double roundCone(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, double ra, double rb) {
+  const glm::dvec3 ab = b - a;
+  const double t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+  return glm::length(p - (a + t * ab)) - (ra + (rb - ra) * t);
+}
+
+double box(const glm::dvec3& p, const glm::dvec3& c, const glm::dvec3& half) {
+  const glm::dvec3 q = glm::abs(p - c) - half;
+  return glm::length(glm::max(q, 0.0)) + std::min(std::max({q.x, q.y, q.z}), 0.0);
+}
+
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// The whole tooth: crown with four cusps, a cervical trunk, two diverging roots.
+double toothDistance(const glm::dvec3& p) {
+  double crown = superellipsoid(p, {0, 5.2, 0}, {5.3, 3.8, 4.8}, 2.6);
+  for (double sx : {-1.0, 1.0})
+    for (double sz : {-1.0, 1.0}) crown = smin(crown, sphere(p, {2.3 * sx, 7.6, 2.0 * sz}, 2.0), 1.2);
+  const double trunk = roundCone(p, {0, 2.5, 0}, {0, -0.5, 0}, 4.1, 3.4);
+  const double mesial = roundCone(p, {-2.3, 0.5, 0}, {-3.0, -10.2, 0.2}, 2.0, 0.55);
+  const double distal = roundCone(p, {2.3, 0.5, 0}, {2.8, -9.8, -0.2}, 2.0, 0.55);
+  return smin(smin(crown, trunk, 1.0), smin(mesial, distal, 0.6), 1.0);
+}
+
+double pulpDistance(const glm::dvec3& p) {
+  double pulp = superellipsoid(p, {0, 3.6, 0}, {2.5, 1.5, 2.1}, 2.2);
+  for (double sx : {-1.0, 1.0})
+    for (double sz : {-1.0, 1.0}) pulp = smin(pulp, sphere(p, {1.7 * sx, 5.0, 1.4 * sz}, 0.7), 0.6);
+  const double canal1 = roundCone(p, {-2.0, 2.5, 0}, {-2.95, -9.7, 0.2}, 0.45, 0.12);
+  const double canal2 = roundCone(p, {2.0, 2.5, 0}, {2.75, -9.3, -0.2}, 0.45, 0.12);
+  return smin(pulp, std::min(canal1, canal2), 0.5);
+}
+
+// Enamel covers the crown, thinning to nothing at the cemento-enamel junction.
+double enamelThickness(double y) { return 1.4 * smoothstep(kCej - 0.5, kCej + 2.5, y); }
+
+// Fraction of a voxel of size h (mm) inside a surface at signed distance d.
+double coverage(double d, double h) { return std::clamp(0.5 - d / h, 0.0, 1.0); }
+
+float densityAt(const glm::dvec3& pmm, bool socket, double hmm) {
+  using D = ToothDensities;
+  double v = D::air;
+  const double tooth = toothDistance(pmm);
+  if (socket) {
+    // Alveolar bone up to 1.5 mm below the junction, with a 0.2 mm ligament
+    // space around the roots.
+    const double bone = box(pmm, {0, -6.0, 0}, {9.5, 6.5, 7.0});
+    v += (D::bone - v) * coverage(bone, hmm);
+    v += (D::softTissue - v) * coverage(std::max(tooth - 0.2, bone), hmm);
+  }
+  v += (D::enamel - v) * coverage(tooth, hmm);
+  v += (D::dentin - v) * coverage(tooth + enamelThickness(pmm.y), hmm);
+  v += (D::softTissue - v) * coverage(pulpDistance(pmm), hmm);
+  return static_cast<float>(v);
+}
+
+}  // namespace
+
+float toothPhantomDensity(const glm::dvec3& p, bool socket) { return densityAt(p * 1000.0, socket, 1e-9); }
+
+ToothPhantomOptions parsePhantomUrl(const std::string& url) {
+  const std::string prefix = "phantom:tooth";
+  if (url.rfind(prefix, 0) != 0)
+    throw VolumeError(url + ": unknown phantom; the embedded phantom is 'phantom:tooth'");
+  ToothPhantomOptions o;
+  std::string rest = url.substr(prefix.size());
+  if (rest.empty()) return o;
+  if (rest[0] != '?') throw VolumeError(url + ": expected '?' before phantom options");
+  bool voxelGiven = false;
+  std::size_t pos = 1;
+  while (pos <= rest.size()) {
+    std::size_t end = rest.find('&', pos);
+    if (end == std::string::npos) end = rest.size();
+    const std::string item = rest.substr(pos, end - pos);
+    pos = end + 1;
+    if (item.empty()) continue;
+    const std::size_t eq = item.find('=');
+    const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    auto number = [&](std::string_view s, double& out) {
+      auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+      if (ec != std::errc() || p != s.data() + s.size() || !std::isfinite(out))
+        throw VolumeError(url + ": option '" + key + "' expects a number, found '" + std::string(s) + "'");
+    };
+    if (key == "size") {
+      double d[3];
+      std::size_t a = 0;
+      for (int i = 0; i < 3; ++i) {
+        std::size_t b = value.find(',', a);
+        if ((i < 2) == (b == std::string::npos))
+          throw VolumeError(url + ": option 'size' expects three integers X,Y,Z, found '" + value + "'");
+        number(std::string_view(value).substr(a, (b == std::string::npos ? value.size() : b) - a), d[i]);
+        a = b + 1;
+      }
+      o.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
+      if (glm::dvec3(o.dims) != glm::dvec3(d[0], d[1], d[2]))
+        throw VolumeError(url + ": option 'size' expects whole numbers, found '" + value + "'");
+    } else if (key == "voxel") {
+      number(value, o.voxelSize);
+      voxelGiven = true;
+    } else if (key == "socket") {
+      if (value != "0" && value != "1") throw VolumeError(url + ": option 'socket' expects 0 or 1");
+      o.socket = value == "1";
+    } else {
+      throw VolumeError(url + ": unknown phantom option '" + key + "' (expected size, voxel or socket)");
+    }
+  }
+  // Without an explicit voxel size, keep the physical extent of the default volume.
+  if (!voxelGiven && o.dims.x > 0) o.voxelSize = ToothPhantomOptions{}.voxelSize * 256.0 / o.dims.x;
+  checkVolumeShape(url, o.dims, glm::dvec3(o.voxelSize));
+  return o;
+}
+
+VoxelVolume makeToothPhantom(const ToothPhantomOptions& o) {
+  checkVolumeShape("phantom:tooth", o.dims, glm::dvec3(o.voxelSize));
+  const glm::ivec3 n = o.dims;
+  const double hmm = o.voxelSize * 1000.0;
+  const glm::dvec3 half = (glm::dvec3(n) - 1.0) * 0.5;
+  std::vector<float> values(std::size_t(n.x) * n.y * n.z, ToothDensities::air);
+  // Every voxel is a pure function of its position: any split over threads
+  // gives the same bytes.
+  tbb::parallel_for(0, n.z, [&](int k) {
+    for (int j = 0; j < n.y; ++j) {
+      const double y = (j - half.y) * hmm;
+      for (int i = 0; i < n.x; ++i) {
+        const glm::dvec3 p((i - half.x) * hmm, y, (k - half.z) * hmm);
+        // Far outside the tooth (and its socket) there is only air: skip the geometry.
+        if (!o.socket && (std::abs(p.x) > 7.5 || std::abs(p.z) > 6.5 || p.y > 11.0 || p.y < -11.5)) continue;
+        values[(std::size_t(k) * n.y + j) * n.x + i] = densityAt(p, o.socket, hmm);
+      }
+    }
+  });
+  return VoxelVolume::fromDense(values.data(), n, glm::dvec3(o.voxelSize), ToothDensities::air);
+}
+
+}  // namespace millsim

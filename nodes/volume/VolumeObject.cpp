@@ -1,0 +1,60 @@
+#include "millsim/volume/VolumeObject.h"
+
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/VolumeIO.h"
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+VolumeObject::VolumeObject() = default;
+VolumeObject::~VolumeObject() = default;
+
+const NodeType& VolumeObject::type() {
+  static const NodeType t = makeNodeType<VolumeObject>(
+      "VolumeObject", "children", "MillSim volumes",
+      "A CT voxel volume that is felt, milled and drawn, centred on its local origin.");
+  return t;
+}
+
+void VolumeObject::initialize(DiagnosticSink& sink) {
+  const std::filesystem::path base =
+      location().file.empty() ? std::filesystem::path() : std::filesystem::path(location().file).parent_path();
+  if (url.get().empty()) {
+    sink.error(location(), "VolumeObject has an empty url (expected a volume file, a DICOM folder or phantom:tooth)");
+    return;
+  }
+  if (!(isoValue.get() > airValue.get())) {
+    sink.error(location(), "VolumeObject isoValue " + formatNumber(isoValue.get()) + " must be above airValue " +
+                               formatNumber(airValue.get()));
+    return;
+  }
+  std::string failures;
+  for (const std::string& u : url.get()) {
+    try {
+      LoadedVolume loaded = loadVolume(u, base, airValue.get());
+      const glm::dvec3 override(voxelSize.get());
+      if (override != glm::dvec3(0.0)) {
+        volume_ = std::make_unique<VoxelVolume>(loaded.volume.gridPtr(), loaded.volume.dims(), override,
+                                                airValue.get());
+      } else {
+        volume_ = std::make_unique<VoxelVolume>(std::move(loaded.volume));
+      }
+      format_ = loaded.format;
+      loadedUrl.set(u);
+      return;
+    } catch (const VolumeError& e) {
+      failures += std::string("\n  ") + e.what();
+    }
+  }
+  sink.error(location(), "VolumeObject could not load any of its urls:" + failures);
+}
+
+PointShell& VolumeObject::pointShell(int scale) {
+  auto it = shells_.find(scale);
+  if (it != shells_.end()) return *it->second;
+  if (!volume_) throw VolumeError("VolumeObject has no volume loaded");
+  auto shell = std::make_unique<PointShell>(*volume_, isoValue.get(), scale);
+  return *shells_.emplace(scale, std::move(shell)).first->second;
+}
+
+}  // namespace millsim

@@ -1,0 +1,52 @@
+#pragma once
+// VolumeObject: a CT voxel volume in the scene — the object that is felt, milled
+// and drawn. Placed like X3D's VolumeData: centred on its local origin, under
+// any Transforms. The voxels live in a VoxelVolume (OpenVDB); the point shell
+// for Algorithm #3 is built only when a renderer asks for it.
+#include <map>
+#include <memory>
+
+#include "millsim/core/NodeKinds.h"
+
+namespace millsim {
+
+class VoxelVolume;
+class PointShell;
+
+class VolumeObject : public ChildNode {
+public:
+  VolumeObject();
+  ~VolumeObject() override;
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  MFString url{this, "url", Access::InitializeOnly, {"phantom:tooth"},
+               "Volume sources, first loadable wins: a .vdb, .nrrd/.nhdr, .mha/.mhd, .vti or .dcm file, a folder "
+               "of DICOM slices, or phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1]."};
+  SFFloat isoValue{this, "isoValue", Access::InitializeOnly, 700.f,
+                   "Density above which a point is inside the object (Hounsfield-like units)."};
+  SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
+                   "Density of air; values at or below it are stored as the sparse background."};
+  SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
+                    "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::nonNegative()};
+  SFBool millable{this, "millable", Access::InputOutput, true, "Whether the burr removes material."};
+  SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed so far (m³)."};
+  SFString loadedUrl{this, "loadedUrl", Access::OutputOnly, "", "The url that was loaded."};
+
+  void initialize(DiagnosticSink& sink) override;
+
+  // Null until initialize() loaded a volume.
+  VoxelVolume* volume() { return volume_.get(); }
+  const VoxelVolume* volume() const { return volume_.get(); }
+  const std::string& format() const { return format_; }
+  // The point shell at an integer scale, built on first request.
+  PointShell& pointShell(int scale);
+  bool hasPointShell(int scale) const { return shells_.count(scale) != 0; }
+
+private:
+  std::unique_ptr<VoxelVolume> volume_;
+  std::string format_;
+  std::map<int, std::unique_ptr<PointShell>> shells_;
+};
+
+}  // namespace millsim

@@ -1,0 +1,183 @@
+// VTK XML image data (.vti): readVti, through vtkXMLImageDataReader.
+//
+// The reader's information pass (extent, spacing, arrays) runs first, so the
+// size is checked before VTK allocates the data. VTK's errors are caught with
+// an observer and put into the exception instead of being printed.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDataObject.h>
+#include <vtkExecutive.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkType.h>
+#include <vtkXMLImageDataReader.h>
+
+#include "millsim/volume/VolumeIO.h"
+
+namespace fs = std::filesystem;
+
+namespace millsim {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(b, e - b);
+}
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+// Collects what VTK would print, so that it goes into the exception instead.
+struct VtkMessages {
+  std::string text;
+  vtkNew<vtkCallbackCommand> command;
+  VtkMessages() {
+    command->SetClientData(this);
+    command->SetCallback([](vtkObject*, unsigned long, void* self, void* call) {
+      if (!call) return;
+      std::string m = static_cast<const char*>(call);
+      const std::size_t p = m.find("): ");  // drop "file.cxx:123 vtkClass (0x...): "
+      if (p != std::string::npos) m = m.substr(p + 3);
+      m = trim(m.substr(0, m.find('\n')));  // first line: the executive appends a request dump
+      auto& t = static_cast<VtkMessages*>(self)->text;
+      // The executive's "Algorithm ... returned failure" only repeats that the reader failed.
+      if (m.rfind("Algorithm ", 0) == 0 && !t.empty()) return;
+      t += (t.empty() ? "" : "; ") + m;
+    });
+  }
+  void watch(vtkAlgorithm* a) {
+    a->AddObserver(vtkCommand::ErrorEvent, command);
+    a->AddObserver(vtkCommand::WarningEvent, command);
+    a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, command);
+  }
+};
+
+std::vector<float> toFloats(vtkDataArray* a) {
+  const vtkIdType n = a->GetNumberOfTuples() * a->GetNumberOfComponents();
+  std::vector<float> v(static_cast<std::size_t>(n));
+  switch (a->GetDataType()) {
+    vtkTemplateMacro({
+      const auto* p = static_cast<const VTK_TT*>(a->GetVoidPointer(0));
+      for (vtkIdType i = 0; i < n; ++i) v[std::size_t(i)] = static_cast<float>(p[i]);
+    });
+    default: throw std::runtime_error(std::string("unsupported scalar type ") + a->GetDataTypeAsString());
+  }
+  return v;
+}
+
+}  // namespace
+
+VoxelVolume readVti(const fs::path& file, float airValue) {
+  const std::string name = file.string();
+  {
+    std::error_code ec;
+    if (!fs::exists(file, ec)) throw VolumeError(name + ": no such file");
+    if (fs::is_directory(file, ec)) throw VolumeError(name + ": is a folder, not a .vti file");
+  }
+  {
+    // VTK XML files start with "<?xml" or "<VTKFile" (after an optional byte-order mark and spaces).
+    std::ifstream in(file, std::ios::binary);
+    std::string head(64, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(std::size_t(in.gcount()));
+    if (head.rfind("\xEF\xBB\xBF", 0) == 0) head = head.substr(3);
+    head = trim(head);
+    if (head.rfind("<?xml", 0) != 0 && head.rfind("<VTKFile", 0) != 0)
+      throw VolumeError(name + ": not an XML file (a .vti file starts with '<?xml' or '<VTKFile')");
+    // VTK parses the XML only up to <AppendedData>, so a file cut inside appended raw data
+    // would be read as garbage without an error. Every complete file ends with </VTKFile>.
+    in.clear();
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    const std::streamoff tail = std::min<std::streamoff>(size, 256);
+    std::string end(std::size_t(tail), '\0');
+    in.seekg(size - tail);
+    in.read(end.data(), tail);
+    end = trim(end);
+    if (end.size() < 10 || end.compare(end.size() - 10, 10, "</VTKFile>") != 0)
+      throw VolumeError(name + ": truncated file: it does not end with </VTKFile>");
+  }
+
+  VtkMessages messages;  // outlives the reader, which holds its callback
+  vtkNew<vtkXMLImageDataReader> reader;
+  messages.watch(reader);
+  reader->SetParserErrorObserver(messages.command);  // the XML parser reports on its own object
+  reader->SetReaderErrorObserver(messages.command);
+  reader->SetFileName(name.c_str());
+  reader->UpdateInformation();
+  if (!messages.text.empty()) throw VolumeError(name + ": cannot read as VTK XML image data: " + messages.text);
+
+  vtkInformation* info = reader->GetOutputInformation(0);
+  int ext[6] = {0, -1, 0, -1, 0, -1};
+  double sp[3] = {0, 0, 0};
+  if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    throw VolumeError(name + ": not VTK XML image data (no ImageData WholeExtent)");
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), ext);
+  if (info->Has(vtkDataObject::SPACING())) info->Get(vtkDataObject::SPACING(), sp);
+  const long long ext64[3] = {static_cast<long long>(ext[1]) - ext[0] + 1, static_cast<long long>(ext[3]) - ext[2] + 1,
+                              static_cast<long long>(ext[5]) - ext[4] + 1};
+  for (long long e : ext64)
+    if (e > (1ll << 31) - 1) throw VolumeError(name + ": extent too large for a volume");
+  const glm::ivec3 dims{int(ext64[0]), int(ext64[1]), int(ext64[2])};
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(sp[a]) || sp[a] <= 0.0)
+      throw VolumeError(name + ": spacing along " + "xyz"[a] + " is " + fmt(sp[a]) +
+                        " mm; spacing must be a positive finite number of millimetres");
+  const glm::dvec3 spacing = glm::dvec3(sp[0], sp[1], sp[2]) / 1000.0;
+  checkVolumeShape(name, dims, spacing);  // before VTK allocates the data
+  if (reader->GetNumberOfPointArrays() == 0)
+    throw VolumeError(name + ": no point data arrays (cell data is not supported: values must be on the voxels)");
+
+  reader->Update();
+  if (!messages.text.empty()) throw VolumeError(name + ": " + messages.text);
+  vtkImageData* image = reader->GetOutput();
+  int d[3] = {0, 0, 0};
+  if (image) image->GetDimensions(d);
+  if (!image || d[0] != dims.x || d[1] != dims.y || d[2] != dims.z)
+    throw VolumeError(name + ": VTK could not read the image data (got " + std::to_string(d[0]) + "x" +
+                      std::to_string(d[1]) + "x" + std::to_string(d[2]) + ")");
+  vtkPointData* pd = image->GetPointData();
+  vtkDataArray* scalars = pd->GetScalars();
+  if (!scalars) {
+    if (pd->GetNumberOfArrays() == 1) scalars = pd->GetArray(0);
+    if (!scalars)
+      throw VolumeError(name + ": " + std::to_string(pd->GetNumberOfArrays()) +
+                        " point data arrays and none is marked Scalars; cannot tell which one holds the densities");
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+    throw VolumeError(name + ": array '" + std::string(scalars->GetName() ? scalars->GetName() : "") + "' has " +
+                      std::to_string(scalars->GetNumberOfComponents()) +
+                      " components per voxel: multi-component data is not supported");
+  const std::size_t n = std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
+  if (std::size_t(scalars->GetNumberOfTuples()) != n)
+    throw VolumeError(name + ": header/size mismatch: the extent promises " + std::to_string(n) + " values, array '" +
+                      std::string(scalars->GetName() ? scalars->GetName() : "") + "' has " +
+                      std::to_string(scalars->GetNumberOfTuples()));
+  std::vector<float> values;
+  try {
+    values = toFloats(scalars);
+  } catch (const std::runtime_error& e) {
+    throw VolumeError(name + ": " + e.what());
+  }
+  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue);
+}
+
+}  // namespace millsim

@@ -1,0 +1,294 @@
+// VoxelVolume, trilinear sampling, the tooth phantom, milling and the point shell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/volume/BlockChannel.h"
+#include "millsim/volume/Milling.h"
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VolumeSampler.h"
+#include "millsim/volume/VoxelVolume.h"
+
+using namespace millsim;
+
+namespace {
+
+template <class F> VoxelVolume makeVolume(glm::ivec3 n, double h, float air, F&& f) {
+  std::vector<float> v(std::size_t(n.x) * n.y * n.z);
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i) v[(std::size_t(k) * n.y + j) * n.x + i] = f(i, j, k);
+  return VoxelVolume::fromDense(v.data(), n, glm::dvec3(h), air);
+}
+
+// Solid ball of radius R (voxels) with a one-voxel anti-aliased edge; 1 inside, 0 outside.
+VoxelVolume ball(int n, double R) {
+  const double c = (n - 1) * 0.5;
+  return makeVolume({n, n, n}, 1e-3, 0.f, [&](int i, int j, int k) {
+    const double r = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
+    return float(std::clamp(0.5 + (R - r), 0.0, 1.0));
+  });
+}
+
+}  // namespace
+
+TEST(VoxelVolume, PlacementFollowsX3DVolumeData) {
+  auto v = makeVolume({4, 3, 2}, 0.5e-3, -1.f, [](int, int, int) { return 1.f; });
+  EXPECT_EQ(v.indexToLocal({0, 0, 0}), glm::dvec3(-0.75e-3, -0.5e-3, -0.25e-3));
+  EXPECT_EQ(v.indexToLocal({3, 2, 1}), glm::dvec3(0.75e-3, 0.5e-3, 0.25e-3));
+  const glm::dvec3 back = v.localToIndex(v.indexToLocal({1, 2, 1}));
+  EXPECT_NEAR(glm::length(back - glm::dvec3(1, 2, 1)), 0.0, 1e-12);
+}
+
+TEST(VoxelVolume, AirIsSparseBackground) {
+  // A small cube of material in a large air volume stores only the cube's leaves.
+  auto v = makeVolume({128, 128, 128}, 1e-3, -1000.f, [](int i, int j, int k) {
+    return (i >= 60 && i < 68 && j >= 60 && j < 68 && k >= 60 && k < 68) ? 500.f : -1000.f;
+  });
+  EXPECT_EQ(v.activeVoxels(), 512u);
+  EXPECT_LT(v.memoryBytes(), 1024u * 1024u);  // a dense copy would be 8 MiB
+  EXPECT_EQ(v.valueAt(0, 0, 0), -1000.f);
+  EXPECT_EQ(v.valueAt(64, 64, 64), 500.f);
+  // Below-air values are stored as air.
+  auto w = makeVolume({8, 8, 8}, 1e-3, -1000.f, [](int, int, int) { return -1500.f; });
+  EXPECT_EQ(w.valueAt(3, 3, 3), -1000.f);
+}
+
+TEST(VoxelVolume, BadShapesAreRefused) {
+  float one = 1.f;
+  EXPECT_THROW(VoxelVolume::fromDense(&one, {0, 1, 1}, glm::dvec3(1e-3), 0.f), VolumeError);
+  EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(0.0), 0.f), VolumeError);
+  EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(-1e-3), 0.f), VolumeError);
+  EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(std::nan("")), 0.f), VolumeError);
+  try {
+    checkVolumeShape("big.nrrd", {100000, 100000, 100000}, glm::dvec3(1e-3));
+    FAIL();
+  } catch (const VolumeError& e) {
+    EXPECT_NE(std::string(e.what()).find("big.nrrd: dimensions 100000x100000x100000"), std::string::npos);
+  }
+}
+
+TEST(VolumeSampler, TrilinearIsExactOnLinearFields) {
+  auto v = makeVolume({16, 16, 16}, 1e-3, -1000.f, [](int i, int j, int k) { return 2.f * i - 3.f * j + 0.5f * k + 7.f; });
+  VolumeSampler s(v);
+  for (glm::dvec3 p : {glm::dvec3(3.25, 4.5, 5.75), glm::dvec3(1, 2, 3), glm::dvec3(10.9, 1.1, 7.3)}) {
+    EXPECT_NEAR(s.density(p), 2 * p.x - 3 * p.y + 0.5 * p.z + 7, 1e-4) << p.x;
+    const glm::dvec3 g = s.gradient(p);
+    EXPECT_NEAR(g.x, 2.0, 1e-4);
+    EXPECT_NEAR(g.y, -3.0, 1e-4);
+    EXPECT_NEAR(g.z, 0.5, 1e-4);
+  }
+}
+
+TEST(VolumeSampler, GradientPointsIntoABall) {
+  auto v = ball(40, 12.0);
+  VolumeSampler s(v);
+  const glm::dvec3 c(19.5);
+  for (const glm::dvec3 dir : {glm::dvec3(1, 0, 0), glm::normalize(glm::dvec3(1, 1, 0)),
+                               glm::normalize(glm::dvec3(-1, 2, 3)), glm::normalize(glm::dvec3(0.3, -0.2, -1))}) {
+    const glm::dvec3 p = c + dir * 12.0;  // on the surface
+    EXPECT_NEAR(s.density(p), 0.5, 0.08);
+    const glm::dvec3 g = glm::normalize(s.gradient(p));
+    EXPECT_GT(glm::dot(g, -dir), 0.98);  // density grows inwards
+  }
+  EXPECT_EQ(s.density({-50, 0, 0}), 0.f);  // outside the volume: air
+}
+
+TEST(ToothPhantom, IsDeterministic) {
+  const ToothPhantomOptions small{{64, 64, 44}, 0.4e-3, false};
+  EXPECT_EQ(makeToothPhantom(small).contentHash(), makeToothPhantom(small).contentHash());
+  EXPECT_NE(makeToothPhantom(small).contentHash(), makeToothPhantom({{64, 64, 44}, 0.4e-3, true}).contentHash());
+}
+
+TEST(ToothPhantom, AnatomyHasEnamelOverDentinOverPulp) {
+  using D = ToothDensities;
+  // Sample the phantom's density function at points in the tooth frame (metres).
+  const float cusp = toothPhantomDensity({2.3e-3, 9.0e-3, 2.0e-3}, false);  // 0.6 mm under a cusp tip
+  const float dentin = toothPhantomDensity({0.0, 6.0e-3, 2.0e-3}, false);
+  const float pulp = toothPhantomDensity({0.0, 3.6e-3, 0.0}, false);
+  const float canal = toothPhantomDensity({-2.4e-3, -3.0e-3, 0.1e-3}, false);
+  const float root = toothPhantomDensity({-2.4e-3, -3.0e-3, 1.2e-3}, false);
+  const float air = toothPhantomDensity({0.0, 12.0e-3, 0.0}, false);
+  const float between = toothPhantomDensity({0.0, -8.0e-3, 0.0}, false);  // between the roots
+  EXPECT_EQ(cusp, D::enamel);
+  EXPECT_EQ(dentin, D::dentin);
+  EXPECT_EQ(pulp, D::softTissue);
+  EXPECT_EQ(canal, D::softTissue);
+  EXPECT_EQ(root, D::dentin);
+  EXPECT_EQ(air, D::air);
+  EXPECT_EQ(between, D::air);
+  EXPECT_GT(cusp, dentin);
+  EXPECT_GT(dentin, pulp);
+  // The socket surrounds the roots with bone and a ligament gap.
+  EXPECT_EQ(toothPhantomDensity({0.0, -8.0e-3, 0.0}, true), D::bone);
+  EXPECT_EQ(toothPhantomDensity({0.0, -8.0e-3, 5.0e-3}, true), D::bone);
+}
+
+TEST(ToothPhantom, UrlOptions) {
+  auto o = parsePhantomUrl("phantom:tooth?size=128,128,88&socket=1");
+  EXPECT_EQ(o.dims, glm::ivec3(128, 128, 88));
+  EXPECT_DOUBLE_EQ(o.voxelSize, 0.2e-3);  // same physical extent as the default
+  EXPECT_TRUE(o.socket);
+  EXPECT_DOUBLE_EQ(parsePhantomUrl("phantom:tooth?voxel=0.00005").voxelSize, 0.05e-3);
+  EXPECT_THROW(parsePhantomUrl("phantom:tooth?size=1,2"), VolumeError);
+  EXPECT_THROW(parsePhantomUrl("phantom:tooth?colour=red"), VolumeError);
+  EXPECT_THROW(parsePhantomUrl("phantom:tooth?voxel=-1"), VolumeError);
+  EXPECT_THROW(parsePhantomUrl("phantom:knee"), VolumeError);
+}
+
+TEST(Milling, OneStampRemovesTheSphereCapVolume) {
+  // A half-space of material (y below the middle), iso midway between air and material.
+  const int n = 64;
+  const double h = 0.1e-3;
+  auto v = makeVolume({n, n, n}, h, 0.f, [&](int, int j, int) { return float(std::clamp(32.0 - j, 0.0, 1.0)); });
+  // The surface (value 0.5) lies at index y = 31.5, i.e. local y = 0.
+  for (double depthVoxels : {2.0, 3.5, 5.0}) {
+    auto w = makeVolume({n, n, n}, h, 0.f, [&](int, int j, int) { return float(std::clamp(32.0 - j, 0.0, 1.0)); });
+    Miller miller(w, 0.5f);
+    DirtyBlocks dirty(w.dims());
+    const double r = 8 * h, d = depthVoxels * h;
+    const StampResult res = miller.stamp({0.0, r - d, 0.0}, r, dirty);
+    const double cap = std::numbers::pi * d * d * (3 * r - d) / 3.0;
+    EXPECT_NEAR(res.removedVolume / cap, 1.0, 0.02) << "depth " << depthVoxels << " voxels";
+    EXPECT_GT(res.voxelsChanged, 0);
+    EXPECT_FALSE(dirty.empty());
+    // Every dirty block really contains a changed voxel's block, and the stamp is local.
+    EXPECT_LE(dirty.origins().size(), 27u);
+  }
+  (void)v;
+}
+
+TEST(Milling, StampsNeverAddMaterialAndIgnoreBadInput) {
+  auto v = ball(32, 8.0);
+  Miller miller(v, 0.5f);
+  DirtyBlocks dirty(v.dims());
+  EXPECT_EQ(miller.stamp({std::nan(""), 0, 0}, 1e-3, dirty).voxelsChanged, 0);
+  EXPECT_EQ(miller.stamp({0, 0, 0}, -1.0, dirty).voxelsChanged, 0);
+  EXPECT_EQ(miller.stamp({1.0, 1.0, 1.0}, 1e-3, dirty).voxelsChanged, 0);  // far outside
+  const float before = v.valueAt(15, 15, 15);
+  auto r1 = miller.stamp({0, 0, 0}, 3e-3, dirty);
+  EXPECT_GT(r1.removedVolume, 0.0);
+  EXPECT_LT(v.valueAt(15, 15, 15), before);
+  auto r2 = miller.stamp({0, 0, 0}, 3e-3, dirty);  // same place again: nothing left there
+  EXPECT_EQ(r2.voxelsChanged, 0);
+  EXPECT_NEAR(miller.totalRemoved(), r1.removedVolume, 1e-15);
+}
+
+TEST(PointShell, SurfaceVoxelsOfABallWithOutwardNormals) {
+  auto v = ball(48, 15.0);
+  PointShell shell(v, 0.5f, 1);
+  ASSERT_GT(shell.size(), 0u);
+  // Roughly the sphere's surface area in voxels (4πR² ≈ 2827), within discretisation.
+  EXPECT_GT(shell.size(), 2000u);
+  EXPECT_LT(shell.size(), 4500u);
+  double minDot = 1.0;
+  shell.forEach([&](const ShellPoint& p) {
+    const glm::vec3 radial = glm::normalize(p.position);
+    minDot = std::min(minDot, double(glm::dot(radial, p.normal)));
+    EXPECT_NEAR(glm::length(p.position) / 1e-3, 15.0, 1.0);
+  });
+  EXPECT_GT(minDot, 0.8);
+}
+
+TEST(PointShell, CoarserScalesHaveFewerPoints) {
+  auto v = ball(64, 24.0);
+  const std::size_t n1 = PointShell(v, 0.5f, 1).size(), n2 = PointShell(v, 0.5f, 2).size(),
+                    n3 = PointShell(v, 0.5f, 3).size();
+  EXPECT_GT(n1, 3 * n2);  // about 1/s² as many
+  EXPECT_GT(n2, n3);
+  EXPECT_THROW(PointShell(v, 0.5f, 0), VolumeError);
+}
+
+TEST(PointShell, BoxQueriesVisitOnlyOverlappingBuckets) {
+  auto v = ball(64, 24.0);
+  PointShell shell(v, 0.5f, 1);
+  Aabb box;
+  box.lo = glm::vec3(20e-3, -3e-3, -3e-3);
+  box.hi = glm::vec3(26e-3, 3e-3, 3e-3);
+  std::size_t inBox = 0, visited = 0;
+  shell.forEachCandidate([&](const Aabb& b) { return b.overlaps(box); },
+                         [&](const ShellPoint& p) {
+                           ++visited;
+                           inBox += p.position.x >= box.lo.x && p.position.x <= box.hi.x &&
+                                    std::abs(p.position.y) <= 3e-3 && std::abs(p.position.z) <= 3e-3;
+                         });
+  std::size_t brute = 0;
+  shell.forEach([&](const ShellPoint& p) {
+    brute += p.position.x >= box.lo.x && p.position.x <= box.hi.x && std::abs(p.position.y) <= 3e-3 &&
+             std::abs(p.position.z) <= 3e-3;
+  });
+  EXPECT_EQ(inBox, brute);  // no point in the box is missed
+  EXPECT_GT(brute, 0u);
+  EXPECT_LT(visited, shell.size() / 5);  // and most of the shell is never visited
+}
+
+TEST(PointShell, IncrementalUpdateEqualsRebuild) {
+  for (int scale : {1, 2, 3}) {
+    auto v = ball(64, 22.0);
+    PointShell shell(v, 0.5f, scale);
+    Miller miller(v, 0.5f);
+    DirtyBlocks dirty(v.dims());
+    // A few stamps on the surface, one crossing block borders, one drilling inwards.
+    for (glm::dvec3 c : {glm::dvec3(22e-3, 0, 0), glm::dvec3(0, 21.5e-3, 0.5e-3), glm::dvec3(16e-3, 0, 0),
+                         glm::dvec3(-8e-3, -8e-3, 19e-3)}) {
+      miller.stamp(c, 5e-3, dirty);
+      shell.update(v, dirty.origins());
+      dirty.clear();
+    }
+    PointShell fresh(v, 0.5f, scale);
+    const auto a = shell.points(), b = fresh.points();
+    ASSERT_EQ(a.size(), b.size()) << "scale " << scale;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(a[i].position, b[i].position) << "scale " << scale << " point " << i;
+      ASSERT_EQ(a[i].normal, b[i].normal) << "scale " << scale << " point " << i;
+    }
+  }
+}
+
+TEST(PointShell, ToothPhantomCountsFallWithScale) {
+  auto v = makeToothPhantom({{128, 128, 88}, 0.2e-3, false});
+  const std::size_t n1 = PointShell(v, 700.f, 1).size(), n2 = PointShell(v, 700.f, 2).size(),
+                    n3 = PointShell(v, 700.f, 3).size();
+  EXPECT_GT(n1, n2);
+  EXPECT_GT(n2, n3);
+  EXPECT_GT(n3, 100u);
+}
+
+TEST(BlockChannel, GraphicsReplicaFollowsMillingOnAnotherThread) {
+  auto v = ball(64, 24.0);
+  VolumeReplica replica(v);
+  BlockChannel channel(16);  // small, so the publisher must hold blocks back and retry
+  std::atomic<bool> done{false};
+  std::size_t applied = 0;
+  // The graphics side: drains and reads its replica while milling goes on.
+  std::thread graphics([&] {
+    VolumeSampler reader(replica.volume());
+    double sink = 0;
+    while (!done.load(std::memory_order_acquire)) {
+      applied += replica.apply(channel).size();
+      sink += reader.density({32, 32, 32});
+    }
+    applied += replica.apply(channel).size();
+    EXPECT_GE(sink, 0.0);
+  });
+  // The haptic side: mills a groove around the ball, publishing after every stamp.
+  Miller miller(v, 0.5f);
+  DirtyBlocks dirty(v.dims());
+  BlockPublisher publisher(v, channel);
+  for (int s = 0; s < 200; ++s) {
+    const double a = s * 0.03;
+    miller.stamp({23e-3 * std::cos(a), 23e-3 * std::sin(a), 0.0}, 3e-3, dirty);
+    publisher.publish(dirty.origins());
+    dirty.clear();
+  }
+  while (publisher.publish({}) > 0) std::this_thread::yield();  // flush what did not fit
+  done.store(true, std::memory_order_release);
+  graphics.join();
+  EXPECT_GT(applied, 0u);
+  EXPECT_EQ(replica.volume().contentHash(), v.contentHash());
+}
