@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "Commands.h"
+#include "VolumeReport.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/x3d/X3DLoader.h"
 
@@ -21,6 +22,7 @@ void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       return;
     }
     std::cout << describeScene(*r.scene);
+    std::cout << describeVolumes(*r.scene);
     std::cout << "nodes: " << r.scene->nodeCount() << ", DEF names: " << r.scene->defs.size()
               << ", routes: " << r.scene->routes.size() << ", plugins: " << r.scene->plugins.size() << "\n";
     result = kExitOk;

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   int result = kExitOk;
   addCheckCommand(app, global, result);
   addNodesCommand(app, result);
+  addPhantomCommand(app, result);
+  addReplayCommand(app, global, result);
 
   try {
     app.parse(argc, argv);

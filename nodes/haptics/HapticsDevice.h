@@ -1,0 +1,45 @@
+#pragma once
+// HapticsDevice: the base of device nodes (AresDevice, HandDevice,
+// TrajectoryDevice). Field names follow H3DAPI's H3DHapticsDevice where they
+// apply. The device holds the tool and the haptics renderer; swapping the
+// renderer element switches the algorithm.
+#include "millsim/core/NodeKinds.h"
+#include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/haptics/MillTool.h"
+
+namespace millsim {
+
+class HapticsDevice : public ChildNode {
+public:
+  SFVec3f devicePosition{this, "devicePosition", Access::OutputOnly, glm::vec3(0.f),
+                         "Burr centre position, calibrated, world frame (m)."};
+  SFRotation deviceOrientation{this, "deviceOrientation", Access::OutputOnly, Rotation{},
+                               "Tool orientation, calibrated, world frame."};
+  SFVec3f force{this, "force", Access::OutputOnly, glm::vec3(0.f), "Force last sent to the device (N)."};
+  SFVec3f torque{this, "torque", Access::OutputOnly, glm::vec3(0.f),
+                 "Torque last sent to the device, about the burr centre (N·m)."};
+  SFBool mainButton{this, "mainButton", Access::OutputOnly, false, "Milling switch: true while the burr spins."};
+  SFFloat hapticsRate{this, "hapticsRate", Access::OutputOnly, 0.f, "Measured haptic loop rate (Hz)."};
+  SFTime hapticsLoopTime{this, "hapticsLoopTime", Access::OutputOnly, Time{},
+                         "Compute time of the last haptic frame (s)."};
+  SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
+                             "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
+  SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N).",
+                     Range::positive()};
+  SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m).",
+                      Range::positive()};
+  SFVec3f positionCalibration{this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
+                              "Offset added to the raw device position (m)."};
+  SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
+                                    "Rotation applied to raw device poses (about the world origin)."};
+  SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent."};
+  SFNodeOf<MillTool> tool{this, "tool", Access::InputOutput, "The milling tool the device holds."};
+  SFNodeOf<HapticsRendererNode> hapticsRenderer{this, "hapticsRenderer", Access::InputOutput,
+                                                "The algorithm that computes force and torque."};
+
+  // Raw device pose → calibrated world pose.
+  Pose calibrate(const Pose& raw) const;
+  void initialize(DiagnosticSink& sink) override;
+};
+
+}  // namespace millsim

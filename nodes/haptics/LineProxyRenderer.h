@@ -1,0 +1,31 @@
+#pragma once
+// Algorithm #1 of the paper (§4): a constraint-based proxy method with the tool
+// approximated by vertices on its centreline. The burr centre's proxy gives
+// the force (eq. 6); the shaft's intersection point with the surface, found by
+// the fraction method (eq. 1–4) on first contact and then tracked by the
+// probe–proxy algorithm (§4.3.2), gives the torque (eq. 7–11). The drawn tool
+// is offset from the proxies by the radii along the surface normal (eq. 12–13).
+#include "millsim/haptics/HapticsRenderer.h"
+
+namespace millsim {
+
+class LineProxyRenderer : public HapticsRendererNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  SFInt32 vertexCount{this, "vertexCount", Access::InitializeOnly, 51,
+                      "Vertices on the centreline, the burr centre included (paper: 51).", Range::atLeast(2)};
+  SFInt32 translationSteps{this, "translationSteps", Access::InitializeOnly, 10,
+                           "NUMBER_OF_TRANSLATION_STEPS of the first-contact search (eq. 3).", Range::atLeast(1)};
+  SFInt32 rotationSteps{this, "rotationSteps", Access::InitializeOnly, 10,
+                        "NUMBER_OF_ROTATION_STEPS of the first-contact search (eq. 4).", Range::atLeast(1)};
+  SFFloat springConstant{this, "springConstant", Access::InitializeOnly, 2000.f,
+                         "k_spring of eq. 6 and eq. 10 (N/m).", Range::positive()};
+  SFInt32 proxyIterations{this, "proxyIterations", Access::InitializeOnly, 6,
+                          "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::atLeast(1)};
+
+  std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
+};
+
+}  // namespace millsim

@@ -1,0 +1,51 @@
+#pragma once
+// Deterministic replay: steps a scene's device renderer open-loop through a
+// trajectory at a fixed rate in simulated time, milling when the button is on,
+// and writes one log row per frame. The same scene, trajectory and options
+// give the same bytes on every run (compute time is only logged on request,
+// because wall-clock time is the one thing that cannot repeat).
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "millsim/core/Scene.h"
+#include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/haptics/Trajectory.h"
+
+namespace millsim {
+
+class HapticsDevice;
+
+struct ReplayOptions {
+  double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
+  std::string renderer;          // replace the scene's renderer with a default one of this type
+  bool timing = false;           // fill frame_us with measured compute time
+};
+
+struct ReplaySummary {
+  std::string rendererName;
+  long frames = 0;
+  double rate = 0.0;
+  double peakForce = 0.0;   // N, after the device limits
+  double peakTorque = 0.0;  // N·m
+  int maxContacts = 0;
+  long contactFrames = 0;
+  double removedVolume = 0.0;  // m³
+  long suppressed = 0;         // frames whose output was non-finite and zeroed
+  double meanFrameUs = 0.0, p99FrameUs = 0.0;  // only with timing
+};
+
+// The log's header (the first 16 columns are the documented replay format).
+const char* replayLogHeader();
+// One log row for a frame.
+void appendLogRow(std::string& out, double t, const Pose& device, const glm::dvec3& force, const glm::dvec3& torque,
+                  const HapticOutput& o, double frameUs, bool button, double removedVolume);
+
+// Throws std::runtime_error with a clear message if the scene has no device,
+// no renderer, or an unknown --renderer type.
+ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* log, const ReplayOptions& options);
+
+// The first device node of the scene, or null.
+HapticsDevice* findDevice(const Scene& scene);
+
+}  // namespace millsim

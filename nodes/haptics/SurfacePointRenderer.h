@@ -1,0 +1,32 @@
+#pragma once
+// Algorithm #2 of the paper (§5): a penalty method with the tool approximated
+// by points on its surface — vertices on the burr sphere, and slices of
+// vertices around the shaft. Colliding sphere vertices give the force (eq.
+// 14–16), colliding slice vertices give per-slice reactions and the torque
+// (eq. 18–21); a sphere or slice whose centre is inside holds its previous
+// value (eq. 17, 19). The tool is drawn where the device is.
+#include "millsim/haptics/HapticsRenderer.h"
+
+namespace millsim {
+
+class SurfacePointRenderer : public HapticsRendererNode {
+public:
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  SFInt32 sphereVertices{this, "sphereVertices", Access::InitializeOnly, 24,
+                         "Vertices on the burr sphere (paper: 24), spread evenly (Fibonacci lattice).",
+                         Range::atLeast(4)};
+  SFInt32 slices{this, "slices", Access::InitializeOnly, 20, "Slices along the shaft (paper: 20).", Range::atLeast(1)};
+  SFInt32 verticesPerSlice{this, "verticesPerSlice", Access::InitializeOnly, 8,
+                           "Vertices on each slice's circle (paper: 8).", Range::atLeast(3)};
+  // Eq. 14 divides by the vertex count, so the felt stiffness is k times the
+  // colliding fraction: k must be much higher than Algorithm #1's.
+  SFFloat springConstant{this, "springConstant", Access::InitializeOnly, 20000.f,
+                         "k_spring of eq. 14 (N/m); the felt stiffness is about k times the colliding fraction.",
+                         Range::positive()};
+
+  std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
+};
+
+}  // namespace millsim

@@ -1,0 +1,235 @@
+// Algorithms #1 and #2 on analytic volumes: directions, magnitudes, torque
+// signs, the hold rules, and degenerate input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/haptics/LineProxyRenderer.h"
+#include "millsim/haptics/SurfacePointRenderer.h"
+#include "millsim/volume/VoxelVolume.h"
+
+using namespace millsim;
+
+namespace {
+
+constexpr double kH = 0.1e-3;  // voxel size
+constexpr float kIso = 500.f;
+const ToolGeometry kTool{0.5e-3, 0.25e-3, 3.0e-3};
+
+// A volume of n³ voxels centred on the origin whose material is where
+// dist(p) < 0 (dist in metres), with a one-voxel anti-aliased edge.
+VoxelVolume analytic(int n, const std::function<double(const glm::dvec3&)>& dist) {
+  std::vector<float> v(std::size_t(n) * n * n);
+  const double c = (n - 1) * 0.5;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const glm::dvec3 p = (glm::dvec3(i, j, k) - c) * kH;
+        v[(std::size_t(k) * n + j) * n + i] = float(1000.0 * std::clamp(0.5 - dist(p) / kH, 0.0, 1.0));
+      }
+  return VoxelVolume::fromDense(v.data(), {n, n, n}, glm::dvec3(kH), 0.f);
+}
+
+VoxelVolume slab() { return analytic(64, [](const glm::dvec3& p) { return p.y; }); }  // material below y = 0
+
+Pose vertical(glm::dvec3 at) { return Pose{at, glm::dquat(1, 0, 0, 0)}; }
+// Shaft tilted from +Y towards +X by `angle` (rotation about −Z).
+Pose tilted(glm::dvec3 at, double angle) { return Pose{at, glm::angleAxis(angle, glm::dvec3(0, 0, -1))}; }
+
+struct Rig {
+  VoxelVolume volume;
+  HapticScene scene;
+  std::unique_ptr<HapticAlgorithm> algorithm;
+  Rig(VoxelVolume v, const HapticsRendererNode& renderer) : volume(std::move(v)) {
+    scene.addVolume(volume, glm::dmat4(1.0), kIso);
+    algorithm = renderer.compile(kTool, scene);
+  }
+  HapticOutput step(const Pose& p) { return algorithm->step(scene, HapticInput{p, 1e-3}); }
+  // Approaches `target` from `from` in small steps (so proxies see the contact begin).
+  HapticOutput approach(const Pose& from, const Pose& target, int steps = 40) {
+    algorithm->reset(from);
+    HapticOutput out;
+    for (int i = 1; i <= steps; ++i) {
+      const double u = double(i) / steps;
+      out = step(Pose{from.position + (target.position - from.position) * u,
+                      glm::slerp(from.orientation, target.orientation, u)});
+    }
+    return out;
+  }
+};
+
+bool finite(const HapticOutput& o) {
+  return std::isfinite(glm::length(o.force)) && std::isfinite(glm::length(o.torque)) &&
+         std::isfinite(o.drawnTool.position.x) && std::isfinite(o.drawnTool.orientation.w);
+}
+
+}  // namespace
+
+// ---- both algorithms ---------------------------------------------------------
+
+class BothRenderers : public ::testing::TestWithParam<std::string> {
+protected:
+  std::shared_ptr<HapticsRendererNode> renderer() const {
+    if (GetParam() == "LineProxyRenderer") return std::make_shared<LineProxyRenderer>();
+    return std::make_shared<SurfacePointRenderer>();
+  }
+};
+
+TEST_P(BothRenderers, FreeSpaceGivesNothing) {
+  Rig rig(slab(), *renderer());
+  auto out = rig.approach(vertical({0, 2e-3, 0}), vertical({0.5e-3, 1.0e-3, 0}));
+  EXPECT_EQ(out.force, glm::dvec3(0.0));
+  EXPECT_EQ(out.torque, glm::dvec3(0.0));
+  EXPECT_EQ(out.contacts, 0);
+}
+
+TEST_P(BothRenderers, ForcePointsOutOfASlabAndGrowsWithDepth) {
+  double previous = 0.0;
+  for (double depth : {0.1e-3, 0.2e-3, 0.3e-3}) {
+    Rig rig(slab(), *renderer());
+    // #1 feels the burr centre; #2 the sphere's surface: press the part each one feels.
+    const double y = GetParam() == "LineProxyRenderer" ? -depth : kTool.tipRadius - depth;
+    auto out = rig.approach(vertical({0, 1.5e-3, 0}), vertical({0, y, 0}));
+    EXPECT_GT(out.force.y, 0.0) << depth;
+    // #2's 24 sphere points are not symmetric about the axis: a little sideways force remains.
+    const double sideways = GetParam() == "LineProxyRenderer" ? 0.05 : 0.3;
+    EXPECT_LT(std::abs(out.force.x) + std::abs(out.force.z), sideways * out.force.y) << depth;
+    EXPECT_GT(glm::length(out.force), previous) << depth;
+    previous = glm::length(out.force);
+    // A vertical tool pressed straight down: no torque to speak of.
+    EXPECT_LT(glm::length(out.torque), 1e-3 * glm::length(out.force) * kTool.shaftLength) << depth;
+  }
+}
+
+TEST_P(BothRenderers, ShaftAgainstAWallGivesTorqueLikeRCrossF) {
+  // Material for x > 0.4 mm; the burr is free, the shaft leans into the wall.
+  Rig rig(analytic(64, [](const glm::dvec3& p) { return 0.4e-3 - p.x; }), *renderer());
+  const Pose start = vertical({-0.6e-3, -1.0e-3, 0});
+  const Pose lean = tilted({-0.6e-3, -1.0e-3, 0}, 0.45);
+  auto out = rig.approach(start, lean, 60);
+  ASSERT_GT(glm::length(out.torque), 0.0);
+  // The wall pushes the shaft back (−X) at a point above the tip (+Y): r × F is +Z.
+  EXPECT_GT(out.torque.z, 0.0);
+  EXPECT_LT(std::abs(out.torque.x) + std::abs(out.torque.y), 0.1 * std::abs(out.torque.z));
+}
+
+TEST_P(BothRenderers, DegeneratePosesNeverGiveNonFiniteOutput) {
+  Rig rig(slab(), *renderer());
+  rig.algorithm->reset(vertical({0, 1e-3, 0}));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Pose poses[] = {
+      vertical({0, 0, 0}),                                   // exactly on the iso-surface
+      vertical({0, -2e-3, 0}),                               // deep in homogeneous material (zero gradient)
+      Pose{{0, -2e-3, 0}, glm::angleAxis(M_PI, glm::dvec3(1, 0, 0))},  // a 180° flip
+      vertical({0, 2e-3, 0}),
+      vertical({0.3, -0.2, 0.1}),                            // a jump of thousands of voxels
+      vertical({nan, 0, 0}),                                 // NaN
+      Pose{{0, 0, 0}, glm::dquat(nan, 0, 0, 0)},
+      vertical({0, -1e-3, 0}),
+      tilted({1e-3, -1e-3, 0}, 3.0),
+  };
+  for (const Pose& p : poses) {
+    const auto out = rig.step(p);
+    EXPECT_TRUE(finite(out));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Algorithms, BothRenderers, ::testing::Values("LineProxyRenderer", "SurfacePointRenderer"));
+
+// ---- Algorithm #1 --------------------------------------------------------------
+
+TEST(LineProxy, TipForceIsSpringConstantTimesProxyDistance) {
+  LineProxyRenderer r;
+  Rig rig(slab(), r);
+  auto out = rig.approach(vertical({0, 1e-3, 0}), vertical({0.2e-3, -0.25e-3, 0}));
+  ASSERT_TRUE(out.hasProxy);
+  const glm::dvec3 device(0.2e-3, -0.25e-3, 0);
+  EXPECT_NEAR(glm::length(out.force), r.springConstant.get() * glm::length(out.proxy - device), 1e-9);
+  EXPECT_NEAR(out.proxy.y, 0.0, 0.2 * kH);  // the proxy sits on the surface
+  EXPECT_NEAR(out.force.y, r.springConstant.get() * 0.25e-3, 0.2 * kH * r.springConstant.get());
+  // Drawn burr offset by its radius along the normal: it rests on the surface.
+  EXPECT_NEAR(out.drawnTool.position.y, kTool.tipRadius, 0.3 * kH);
+}
+
+TEST(LineProxy, AFastPushDoesNotCarryTheProxyThroughAThinPlate) {
+  LineProxyRenderer r;
+  // A plate two voxels thick around y = 0.
+  Rig rig(analytic(64, [](const glm::dvec3& p) { return std::abs(p.y) - kH; }), r);
+  rig.algorithm->reset(vertical({0, 1e-3, 0}));
+  rig.step(vertical({0, 1e-3, 0}));
+  auto out = rig.step(vertical({0, -1.5e-3, 0}));  // 25 voxels in one frame, straight through
+  ASSERT_TRUE(out.hasProxy);
+  EXPECT_GT(out.proxy.y, 0.5 * kH);  // held on top of the plate
+  EXPECT_GT(out.force.y, 0.0);
+}
+
+TEST(LineProxy, ProxySlidesAlongTheSurface) {
+  LineProxyRenderer r;
+  Rig rig(slab(), r);
+  rig.approach(vertical({0, 1e-3, 0}), vertical({0, -0.2e-3, 0}));
+  HapticOutput out;
+  for (int i = 1; i <= 40; ++i) out = rig.step(vertical({i * 0.02e-3, -0.2e-3, 0}));
+  EXPECT_NEAR(out.proxy.x, 0.8e-3, 0.1 * kH);
+  EXPECT_NEAR(out.proxy.y, 0.0, 0.2 * kH);
+  EXPECT_LT(std::abs(out.force.x), 0.05 * out.force.y);  // frictionless
+}
+
+// ---- Algorithm #2 --------------------------------------------------------------
+
+TEST(SurfacePoint, ForceDoesNotDependOnVertexResolution) {
+  const double depth = 0.3e-3;
+  std::vector<double> forces;
+  for (int n : {24, 100, 400}) {
+    SurfacePointRenderer r;
+    r.sphereVertices.set(n);
+    Rig rig(slab(), r);
+    auto out = rig.approach(vertical({0, 1.5e-3, 0}), vertical({0, kTool.tipRadius - depth, 0}));
+    forces.push_back(out.force.y);
+  }
+  EXPECT_NEAR(forces[0] / forces[2], 1.0, 0.25);  // 24 points: discretisation error only
+  EXPECT_NEAR(forces[1] / forces[2], 1.0, 0.08);
+}
+
+TEST(SurfacePoint, HoldsTheForceWhileTheCentreIsInside) {
+  SurfacePointRenderer r;
+  Rig rig(slab(), r);
+  rig.approach(vertical({0, 1.5e-3, 0}), vertical({0, 0.05e-3, 0}), 60);
+  const auto before = rig.step(vertical({0, 0.02e-3, 0}));  // centre just outside
+  EXPECT_FALSE(before.flags & kFlagHeldForce);
+  const auto inside = rig.step(vertical({0, -0.3e-3, 0}));  // centre inside: eq. 17
+  EXPECT_EQ(inside.force, before.force);
+  EXPECT_TRUE(inside.flags & kFlagHeldForce);
+  const auto deeper = rig.step(vertical({0, -0.4e-3, 0}));
+  EXPECT_EQ(deeper.force, before.force);
+  const auto out = rig.step(vertical({0, 0.1e-3, 0}));  // out again: computed afresh
+  EXPECT_NE(out.force, before.force);
+}
+
+TEST(SurfacePoint, SliceHoldsItsReactionWhileItsCentreIsInside) {
+  SurfacePointRenderer r;
+  r.slices.set(4);
+  // A wall for x > 0: lean the shaft in until slice centres cross it.
+  Rig rig(analytic(64, [](const glm::dvec3& p) { return -p.x; }), r);
+  rig.approach(vertical({-0.7e-3, -1.0e-3, 0}), tilted({-0.7e-3, -1.0e-3, 0}, 0.2), 30);
+  const auto a = rig.step(tilted({-0.7e-3, -1.0e-3, 0}, 0.2));
+  const auto b = rig.step(tilted({-0.7e-3, -1.0e-3, 0}, 0.6));  // upper slice centres now in the wall
+  EXPECT_TRUE(b.flags & kFlagHeldForce);
+  EXPECT_TRUE(std::isfinite(b.torque.z));
+  EXPECT_GT(b.torque.z, 0.0);
+  (void)a;
+}
+
+TEST(SurfacePoint, DrawsTheToolWhereTheDeviceIs) {
+  SurfacePointRenderer r;
+  Rig rig(slab(), r);
+  const Pose p = tilted({0, 0.1e-3, 0}, 0.3);
+  rig.algorithm->reset(p);
+  const auto out = rig.step(p);
+  EXPECT_EQ(out.drawnTool.position, p.position);
+}
