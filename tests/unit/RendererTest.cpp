@@ -11,6 +11,7 @@
 
 #include "millsim/haptics/HapticScene.h"
 #include "millsim/haptics/LineProxyRenderer.h"
+#include "millsim/haptics/RendererSwitch.h"
 #include "millsim/haptics/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -232,4 +233,36 @@ TEST(SurfacePoint, DrawsTheToolWhereTheDeviceIs) {
   rig.algorithm->reset(p);
   const auto out = rig.step(p);
   EXPECT_EQ(out.drawnTool.position, p.position);
+}
+
+// ---- switching renderers at run time ---------------------------------------------
+
+TEST(RendererSwitch, FadesFromTheOldOutputToTheNewWithoutAJolt) {
+  LineProxyRenderer one;
+  SurfacePointRenderer two;
+  VoxelVolume v = slab();
+  HapticScene scene;
+  scene.addVolume(v, glm::dmat4(1.0), kIso);
+  const Pose pressed = vertical({0, -0.2e-3, 0});
+  auto first = one.compile(kTool, scene);
+  first->reset(vertical({0, 1e-3, 0}));
+  for (int i = 0; i <= 20; ++i) first->step(scene, {vertical({0, 1e-3 - i * 0.06e-3, 0}), 1e-3});
+  RendererSwitch sw(std::move(first), 0.05);
+  const HapticOutput before = sw.step(scene, {pressed, 1e-3});
+  sw.replace(two.compile(kTool, scene), pressed);
+  glm::dvec3 last = before.force;
+  double biggestJump = 0.0;
+  HapticOutput out;
+  for (int i = 0; i < 80; ++i) {
+    out = sw.step(scene, {pressed, 1e-3});
+    biggestJump = std::max(biggestJump, glm::length(out.force - last));
+    last = out.force;
+  }
+  EXPECT_FALSE(sw.fading());
+  EXPECT_TRUE(sw.takeRetired() != nullptr);
+  // 50 frames of fade: no frame changes the force by more than 1/50 of the
+  // difference between the two renderers (plus a little for #2 settling).
+  const double difference = glm::length(out.force - before.force);
+  ASSERT_GT(difference, 0.0);
+  EXPECT_LT(biggestJump, difference / 50.0 * 1.5 + 1e-6);
 }

@@ -1,0 +1,132 @@
+// Trajectories (the replay CSV format) and deterministic replay of whole scenes.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/haptics/HapticsDevice.h"
+#include "millsim/haptics/Replay.h"
+#include "millsim/x3d/X3DLoader.h"
+
+using namespace millsim;
+
+namespace {
+
+std::string errorOf(const std::string& csv) {
+  try {
+    Trajectory::parse(csv, "t.csv");
+  } catch (const TrajectoryError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const std::string kHeader = "t,x,y,z,qw,qx,qy,qz,button\n";
+
+std::string replayToString(const std::string& scenePath, const std::string& renderer) {
+  LoadResult r = loadSceneFile(scenePath, builtinRegistry());
+  EXPECT_TRUE(r.ok()) << r.report();
+  if (!r.ok()) return {};
+  // A short piece of the lesson: press into the occlusal surface, then lean and mill.
+  std::string csv = kHeader + "0,0,0.0125,0,1,0,0,0,0\n0.15,0,0.0086,0,1,0,0,0,0\n0.3,0.0003,0.0084,0,0.9962,0,0,-0.0872,1\n";
+  ReplayOptions options;
+  options.renderer = renderer;
+  std::ostringstream log;
+  ReplaySummary s = replay(*r.scene, Trajectory::parse(csv, "short.csv"), &log, options);
+  EXPECT_EQ(s.frames, 301);
+  EXPECT_EQ(s.suppressed, 0);
+  return log.str();
+}
+
+}  // namespace
+
+TEST(Trajectory, ParsesAndInterpolates) {
+  auto t = Trajectory::parse("# comment\n" + kHeader + "0,0,0,0,1,0,0,0,0\n\n1,1,2,3,0.7071068,0,0.7071068,0,1\n", "t.csv");
+  ASSERT_EQ(t.samples().size(), 2u);
+  const auto mid = t.at(0.5);
+  EXPECT_NEAR(glm::length(mid.pose.position - glm::dvec3(0.5, 1, 1.5)), 0.0, 1e-12);
+  // Halfway through a 90° turn about Y is 45° about Y.
+  EXPECT_NEAR(2.0 * std::acos(mid.pose.orientation.w), M_PI / 4, 1e-6);
+  EXPECT_FALSE(mid.button);  // the button holds the earlier row's value
+  EXPECT_TRUE(t.at(1.0).button);
+  EXPECT_EQ(t.at(5.0).pose.position, glm::dvec3(1, 2, 3));  // clamped at the ends
+  // Written out and read back, nothing changes.
+  auto again = Trajectory::parse(t.toCsv(), "again.csv");
+  EXPECT_EQ(again.samples()[1].pose.position, t.samples()[1].pose.position);
+  EXPECT_EQ(again.samples()[1].pose.orientation, t.samples()[1].pose.orientation);
+}
+
+TEST(Trajectory, MalformedFilesNameTheLine) {
+  EXPECT_NE(errorOf("").find("empty trajectory"), std::string::npos);
+  EXPECT_NE(errorOf("t,x,y,z\n").find("t.csv:1: expected the header"), std::string::npos);
+  EXPECT_NE(errorOf(kHeader).find("no rows"), std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,0,0,1,0,0\n").find("t.csv:2: expected 9 columns"), std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,abc,0,1,0,0,0,0\n").find("t.csv:2: column 'y' is not a number: 'abc'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,0,0,1,0,0,0,0\n0,0,0,0,1,0,0,0,0\n").find("t.csv:3: time 0 does not increase"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,0,0,1,0,0,0,0\n-1,0,0,0,1,0,0,0,0\n").find("t.csv:3:"), std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,0,0,2,0,0,0,0\n").find("t.csv:2: the quaternion (qw,qx,qy,qz) has length 2"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,nan,0,0,1,0,0,0,0\n").find("t.csv:2: column 'x' is not finite"), std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,0,0,1,0,0,0,2\n").find("t.csv:2: column 'button' must be 0 or 1"),
+            std::string::npos);
+  EXPECT_THROW(Trajectory::load("/nonexistent/t.csv"), TrajectoryError);
+}
+
+TEST(Replay, IsByteIdenticalRunToRun) {
+  const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
+  const std::string a = replayToString(scene, "");
+  const std::string b = replayToString(scene, "");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.rfind("t,x,y,z,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,frame_us", 0), 0u);
+}
+
+TEST(Replay, EveryRendererReplaysTheSameSceneAndFeelsTheTooth) {
+  const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
+  for (const std::string renderer : {"LineProxyRenderer", "SurfacePointRenderer"}) {
+    const std::string log = replayToString(scene, renderer);
+    EXPECT_EQ(log, replayToString(scene, renderer)) << renderer;
+    // Some frame has contacts (column 15).
+    std::istringstream in(log);
+    std::string line;
+    std::getline(in, line);
+    bool contact = false;
+    while (std::getline(in, line)) {
+      std::istringstream cells(line);
+      std::string cell;
+      for (int c = 0; c < 15; ++c) std::getline(cells, cell, ',');
+      contact |= std::stoi(cell) > 0;
+    }
+    EXPECT_TRUE(contact) << renderer;
+  }
+}
+
+TEST(Replay, SwappingOnlyTheRendererElementWorks) {
+  LoadResult a = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
+  LoadResult b = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/lessons/line-proxy.x3d", builtinRegistry());
+  ASSERT_TRUE(a.ok() && b.ok()) << a.report() << b.report();
+  EXPECT_EQ(findDevice(*a.scene)->hapticsRenderer.get()->typeName(), "SurfacePointRenderer");
+  EXPECT_EQ(findDevice(*b.scene)->hapticsRenderer.get()->typeName(), "LineProxyRenderer");
+}
+
+TEST(Replay, UnknownRendererAndMissingDeviceAreClearErrors) {
+  LoadResult r = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
+  ASSERT_TRUE(r.ok());
+  auto t = Trajectory::parse(kHeader + "0,0,0.02,0,1,0,0,0,0\n", "t.csv");
+  ReplayOptions o;
+  o.renderer = "GodObjectRenderer";
+  try {
+    replay(*r.scene, t, nullptr, o);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown renderer type 'GodObjectRenderer'"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("LineProxyRenderer"), std::string::npos);
+  }
+  LoadResult empty = loadSceneString("<X3D><Scene><Group/></Scene></X3D>", "e.x3d", builtinRegistry());
+  ASSERT_TRUE(empty.ok());
+  EXPECT_THROW(replay(*empty.scene, t, nullptr, {}), std::runtime_error);
+}
