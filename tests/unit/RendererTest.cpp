@@ -108,6 +108,33 @@ TEST_P(BothRenderers, ForcePointsOutOfASlabAndGrowsWithDepth) {
   }
 }
 
+TEST_P(BothRenderers, ForcePointsOutOfABallAlongTheNormal) {
+  const double R = 2.0e-3;
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.4, 1.0, -0.3));
+  // #1 feels the burr centre, #2 the burr's surface: press the felt part 0.2 mm in.
+  const double felt = GetParam() == "LineProxyRenderer" ? 0.0 : kTool.tipRadius;
+  Rig rig(analytic(64, [&](const glm::dvec3& p) { return glm::length(p) - R; }), *renderer());
+  auto out = rig.approach(vertical(dir * (R + felt + 0.8e-3)), vertical(dir * (R + felt - 0.2e-3)));
+  ASSERT_GT(glm::length(out.force), 0.0);
+  EXPECT_GT(glm::dot(glm::normalize(out.force), dir), 0.95);
+}
+
+TEST_P(BothRenderers, ForcePointsOutOfTheWallOfADrilledHole) {
+  // A slab (y < 0) with a vertical hole of radius 1 mm drilled through it.
+  const double hole = 1.0e-3;
+  Rig rig(analytic(64, [&](const glm::dvec3& p) { return std::max(p.y, hole - std::hypot(p.x, p.z)); }),
+          *renderer());
+  const double felt = GetParam() == "LineProxyRenderer" ? 0.0 : kTool.tipRadius;
+  // Down the middle of the hole, then sideways into its +X wall.
+  const Pose above = vertical({0, 1.0e-3, 0}), inHole = vertical({0, -1.0e-3, 0});
+  rig.approach(above, inHole);
+  HapticOutput out;
+  for (int i = 1; i <= 40; ++i) out = rig.step(vertical({(hole - felt + 0.15e-3) * i / 40.0, -1.0e-3, 0}));
+  ASSERT_GT(glm::length(out.force), 0.0);
+  EXPECT_LT(out.force.x, 0.0);
+  EXPECT_GT(-out.force.x, 3.0 * (std::abs(out.force.y) + std::abs(out.force.z)));
+}
+
 TEST_P(BothRenderers, ShaftAgainstAWallGivesTorqueLikeRCrossF) {
   // Material for x > 0.4 mm; the burr is free, the shaft leans into the wall.
   Rig rig(analytic(64, [](const glm::dvec3& p) { return 0.4e-3 - p.x; }), *renderer());
