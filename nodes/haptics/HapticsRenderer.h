@@ -33,6 +33,10 @@ struct HapticOutput {
   bool hasProxy = false;
   glm::dvec3 proxy{0.0};  // the constrained tip (or coupled tool) position
   std::uint32_t flags = 0;  // see HapticFlags
+  // Where the burr cuts when milling is on, and whether it may cut this frame.
+  // Renderers set this to the burr they draw (see docs/algorithms.md, Milling position).
+  bool burrCuts = true;
+  glm::dvec3 burrCentre{0.0};
 };
 
 // Events worth logging, as bits of HapticOutput::flags.

@@ -20,6 +20,7 @@ public:
     int translationSteps;
     int rotationSteps;
     double k;
+    double feedResistance;
     ToolGeometry tool;
   };
 
@@ -112,6 +113,17 @@ public:
     }
     out.drawnTool.position = drawTip;
     out.drawnTool.orientation = rotationBetween(dir, drawDir) * device.orientation;
+    // Only the burr of a tip in contact cuts: a free burr is drawn at the
+    // device, where it overlaps material its centre vertex cannot feel, and
+    // cutting there would clear the surface before the proxy ever met it. In
+    // contact the burr advances into the surface at the feed speed
+    // |F| / feedResistance, never deeper than the probe.
+    out.burrCuts = tipContact;
+    out.burrCentre = drawTip;
+    if (tipContact) {
+      const double feed = std::min(glm::length(out.force) / p_.feedResistance * in.dt, glm::length(proxyPoint - c));
+      out.burrCentre = drawTip - scene.outwardNormal(proxyPoint) * feed;
+    }
 
     prevTip_ = proxyPoint;
     prevDir_ = dir;
@@ -206,7 +218,7 @@ const NodeType& LineProxyRenderer::type() {
 std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
   return std::make_unique<LineProxyAlgorithm>(
       LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
-                                 double(springConstant.get()), tool},
+                                 double(springConstant.get()), double(feedResistance.get()), tool},
       proxyIterations.get());
 }
 

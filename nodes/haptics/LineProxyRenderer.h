@@ -25,6 +25,10 @@ public:
   SFInt32 proxyIterations{this, "proxyIterations", Access::InitializeOnly, 6,
                           "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::atLeast(1)};
 
+  SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
+                         "Milling: the burr advances into material at force / feedResistance (N·s/m).",
+                         Range::positive()};
+
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };
 

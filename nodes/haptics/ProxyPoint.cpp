@@ -50,6 +50,12 @@ const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3&
     if (!isFinite(next)) break;
     proxy_ = next;
   }
+  // Milling may have removed the material under the proxy: follow the
+  // receding surface towards the probe.
+  if (scene.field(proxy_) < 0.0) {
+    const glm::dvec3 next = projectToSurface(scene, proxy_, params_.maxSlideVoxels * h);
+    if (isFinite(next) && glm::dot(next - proxy_, probe - proxy_) > 0.0) proxy_ = next;
+  }
   return proxy_;
 }
 

@@ -92,9 +92,9 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
     const Pose pose = device->calibrate(sample.pose);
     const auto start = std::chrono::steady_clock::now();
     HapticOutput out = algorithm->step(hs, HapticInput{pose, dt});
-    // The burr cuts where it is drawn: at the device for direct rendering, at
-    // the proxy or coupled pose for the constrained methods (docs/algorithms.md).
-    if (sample.button) summary.removedVolume += hs.mill(out.drawnTool.position, tipRadius);
+    // The burr cuts where the renderer says: at the device for direct
+    // rendering, at the offset proxy for #1 (docs/algorithms.md).
+    if (sample.button && out.burrCuts) summary.removedVolume += hs.mill(out.burrCentre, tipRadius);
     const double us =
         options.timing ? std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count()
                        : 0.0;

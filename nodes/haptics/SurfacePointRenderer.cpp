@@ -90,6 +90,7 @@ public:
       }
       out.torque += glm::cross(centre - c, reaction) / double(sliceY_.size());  // eq. 20–21
     }
+    out.burrCentre = c;
     sanitize(out, device);
     lastDrawn_ = out.drawnTool;
     return out;

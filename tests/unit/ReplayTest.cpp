@@ -29,8 +29,8 @@ std::string replayToString(const std::string& scenePath, const std::string& rend
   LoadResult r = loadSceneFile(scenePath, builtinRegistry());
   EXPECT_TRUE(r.ok()) << r.report();
   if (!r.ok()) return {};
-  // A short piece of the lesson: press into the occlusal surface, then lean and mill.
-  std::string csv = kHeader + "0,0,0.0125,0,1,0,0,0,0\n0.15,0,0.0086,0,1,0,0,0,0\n0.3,0.0003,0.0084,0,0.9962,0,0,-0.0872,1\n";
+  // A short piece of the lesson: mill down into the occlusal surface, then lean.
+  std::string csv = kHeader + "0,0,0.0125,0,1,0,0,0,1\n0.15,0,0.0086,0,1,0,0,0,1\n0.3,0.0003,0.0084,0,0.9962,0,0,-0.0872,1\n";
   ReplayOptions options;
   options.renderer = renderer;
   std::ostringstream log;
@@ -102,6 +102,12 @@ TEST(Replay, EveryRendererReplaysTheSameSceneAndFeelsTheTooth) {
       contact |= std::stoi(cell) > 0;
     }
     EXPECT_TRUE(contact) << renderer;
+    // And the burr cut the tooth (removed_mm3, column 31, on the last row).
+    const std::string last = log.substr(log.rfind('\n', log.size() - 2) + 1);
+    std::istringstream cells(last);
+    std::string cell;
+    for (int c = 0; c < 31; ++c) std::getline(cells, cell, ',');
+    EXPECT_GT(std::stod(cell), 0.0) << renderer;
   }
 }
 
