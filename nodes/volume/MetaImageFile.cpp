@@ -30,6 +30,7 @@
 #include <zlib.h>
 
 #include "millsim/volume/VolumeIO.h"
+#include "millsim/volume/VtkReading.h"
 
 namespace fs = std::filesystem;
 
@@ -37,12 +38,11 @@ namespace millsim {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
+using vtkio::fmt;
+using vtkio::toFloats;
+using vtkio::trim;
+using vtkio::VtkMessages;
+
 
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -56,49 +56,8 @@ std::vector<std::string> words(const std::string& s) {
   return w;
 }
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
 
-// Collects what VTK would print, so that it goes into the exception instead.
-struct VtkMessages {
-  std::string text;
-  vtkNew<vtkCallbackCommand> command;
-  VtkMessages() {
-    command->SetClientData(this);
-    command->SetCallback([](vtkObject*, unsigned long, void* self, void* call) {
-      if (!call) return;
-      std::string m = static_cast<const char*>(call);
-      const std::size_t p = m.find("): ");  // drop "file.cxx:123 vtkClass (0x...): "
-      if (p != std::string::npos) m = m.substr(p + 3);
-      m = trim(m.substr(0, m.find('\n')));  // first line: the executive appends a request dump
-      auto& t = static_cast<VtkMessages*>(self)->text;
-      // The executive's "Algorithm ... returned failure" only repeats that the reader failed.
-      if (m.rfind("Algorithm ", 0) == 0 && !t.empty()) return;
-      t += (t.empty() ? "" : "; ") + m;
-    });
-  }
-  void watch(vtkAlgorithm* a) {
-    a->AddObserver(vtkCommand::ErrorEvent, command);
-    a->AddObserver(vtkCommand::WarningEvent, command);
-    a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, command);
-  }
-};
 
-std::vector<float> toFloats(vtkDataArray* a) {
-  const vtkIdType n = a->GetNumberOfTuples() * a->GetNumberOfComponents();
-  std::vector<float> v(static_cast<std::size_t>(n));
-  switch (a->GetDataType()) {
-    vtkTemplateMacro({
-      const auto* p = static_cast<const VTK_TT*>(a->GetVoidPointer(0));
-      for (vtkIdType i = 0; i < n; ++i) v[std::size_t(i)] = static_cast<float>(p[i]);
-    });
-    default: throw std::runtime_error(std::string("unsupported scalar type ") + a->GetDataTypeAsString());
-  }
-  return v;
-}
 
 struct MetaType {
   const char* name;

@@ -1,0 +1,37 @@
+#pragma once
+// Shared by the VTK-based volume readers (MetaImage, VTI): turning VTK's
+// printed errors into exception text, and converting its scalar arrays.
+// Internal to nodes/volume; includes VTK headers, so keep it out of public headers.
+#include <string>
+#include <vector>
+
+#include <vtkCallbackCommand.h>
+#include <vtkNew.h>
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkObject;
+
+namespace millsim::vtkio {
+
+std::string trim(const std::string& s);
+std::string fmt(double v);  // as a stream prints it, for messages
+
+// Collects what VTK would print, so that it goes into the exception instead.
+struct VtkMessages {
+  std::string text;
+  vtkNew<vtkCallbackCommand> command;
+  VtkMessages() {
+    command->SetClientData(this);
+    command->SetCallback(&VtkMessages::collect);
+  }
+  void watch(vtkAlgorithm* a);
+
+private:
+  static void collect(vtkObject*, unsigned long, void* self, void* call);
+};
+
+// Every value of a one-component VTK array as float; throws on unsupported types.
+std::vector<float> toFloats(vtkDataArray* a);
+
+}  // namespace millsim::vtkio
