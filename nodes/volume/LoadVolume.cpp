@@ -85,4 +85,10 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
                     kSupported + ")");
 }
 
+void requireFile(const std::filesystem::path& file, const std::string& what) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw VolumeError(file.string() + ": no such file");
+  if (std::filesystem::is_directory(file, ec)) throw VolumeError(file.string() + ": is a folder, not " + what);
+}
+
 }  // namespace millsim

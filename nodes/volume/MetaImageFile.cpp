@@ -43,7 +43,6 @@ using vtkio::toFloats;
 using vtkio::trim;
 using vtkio::VtkMessages;
 
-
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
@@ -55,9 +54,6 @@ std::vector<std::string> words(const std::string& s) {
   for (std::string t; in >> t;) w.push_back(t);
   return w;
 }
-
-
-
 
 struct MetaType {
   const char* name;
@@ -120,11 +116,7 @@ std::string checkCompressed(std::ifstream& in, std::uintmax_t compressedBytes, s
 
 VoxelVolume readMetaImage(const fs::path& file, float airValue) {
   const std::string name = file.string();
-  {
-    std::error_code ec;
-    if (!fs::exists(file, ec)) throw VolumeError(name + ": no such file");
-    if (fs::is_directory(file, ec)) throw VolumeError(name + ": is a folder, not a MetaImage file");
-  }
+  requireFile(file, "a MetaImage file");
 
   // --- Header: "Key = Value" lines; ElementDataFile is the last one.
   std::ifstream in(file, std::ios::binary);

@@ -303,11 +303,7 @@ std::string promised(std::uintmax_t bytes, glm::ivec3 d, const std::string& type
 
 VoxelVolume readNrrd(const fs::path& file, float airValue) {
   const std::string name = file.string();
-  {
-    std::error_code ec;
-    if (!fs::exists(file, ec)) throw VolumeError(name + ": no such file");
-    if (fs::is_directory(file, ec)) throw VolumeError(name + ": is a folder, not a NRRD file");
-  }
+  requireFile(file, "a NRRD file");
   const NrrdHeader h = parseHeader(file);
 
   // --- Shape: one component, three spatial axes.

@@ -23,12 +23,6 @@ namespace {
 
 const char* const kDimsMeta = "millsim_dims";
 
-void requireFile(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::exists(file, ec)) throw VolumeError(file.string() + ": no such file");
-  if (fs::is_directory(file, ec)) throw VolumeError(file.string() + ": is a folder, not a .vdb file");
-}
-
 std::string gridList(const openvdb::GridPtrVec& grids) {
   std::string s;
   for (const auto& g : grids) {
@@ -42,7 +36,7 @@ std::string gridList(const openvdb::GridPtrVec& grids) {
 
 VoxelVolume readVdb(const fs::path& file, float airValue) {
   const std::string name = file.string();
-  requireFile(file);
+  requireFile(file, "a .vdb file");
   openvdb::initialize();
 
   openvdb::GridPtrVecPtr grids;

@@ -30,6 +30,9 @@ VoxelVolume readVti(const std::filesystem::path& file, float airValue);        /
 // slices ordered by position along the slice normal; refuses non-CT modalities.
 VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue);
 
+// Throws VolumeError "FILE: no such file" or "FILE: is a folder, not WHAT".
+void requireFile(const std::filesystem::path& file, const std::string& what);
+
 // Writers used by `millsim phantom` and the tests. Spacing is written in millimetres.
 void writeVdb(const VoxelVolume& volume, const std::filesystem::path& file);
 void writeNrrd(const VoxelVolume& volume, const std::filesystem::path& file, bool gzip = false);

@@ -38,19 +38,11 @@ using vtkio::toFloats;
 using vtkio::trim;
 using vtkio::VtkMessages;
 
-
-
-
-
 }  // namespace
 
 VoxelVolume readVti(const fs::path& file, float airValue) {
   const std::string name = file.string();
-  {
-    std::error_code ec;
-    if (!fs::exists(file, ec)) throw VolumeError(name + ": no such file");
-    if (fs::is_directory(file, ec)) throw VolumeError(name + ": is a folder, not a .vti file");
-  }
+  requireFile(file, "a .vti file");
   {
     // VTK XML files start with "<?xml" or "<VTKFile" (after an optional byte-order mark and spaces).
     std::ifstream in(file, std::ios::binary);
