@@ -79,7 +79,11 @@ double HapticScene::mill(const glm::dvec3& centreWorld, double radius) {
   for (auto& v : volumes_) {
     if (!v->millable) continue;
     const glm::dvec3 local = glm::dvec3(v->worldToLocal * glm::dvec4(centreWorld, 1.0));
-    removed += v->miller.stamp(local, radius / v->worldPerLocal, v->dirty).removedVolume;
+    // Clearing first keeps `changed` to this call's blocks (O(blocks), no allocation).
+    v->changed.clear();
+    const StampResult res = v->miller.stamp(local, radius / v->worldPerLocal, v->changed);
+    removed += res.removedVolume;
+    if (!v->changed.empty()) ++v->millEpoch;
   }
   return removed;
 }

@@ -38,7 +38,12 @@ public:
     double worldPerLocal;  // uniform scale of the transform (cube root of its determinant)
     VolumeSampler sampler;
     Miller miller;
-    DirtyBlocks dirty;
+    // The 8³ blocks changed by the latest mill() call that changed this
+    // volume, and a counter bumped by every such call. Consumers on the haptic
+    // thread (a renderer's point shell, the graphics publisher) remember the
+    // epoch they last saw and update from `changed` when it moved on.
+    DirtyBlocks changed;
+    std::uint64_t millEpoch = 0;
   };
 
   HapticScene() = default;
@@ -64,6 +69,7 @@ public:
 
   // Removes material with a burr sphere at a world point (every millable
   // volume). Returns the volume removed (m³, in each volume's local units).
+  // Volumes that changed get a new `changed` list and `millEpoch`.
   double mill(const glm::dvec3& centreWorld, double radius);
 
 private:

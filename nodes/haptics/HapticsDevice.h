@@ -3,11 +3,27 @@
 // TrajectoryDevice). Field names follow H3DAPI's H3DHapticsDevice where they
 // apply. The device holds the tool and the haptics renderer; swapping the
 // renderer element switches the algorithm.
+#include <memory>
+#include <stdexcept>
+
 #include "millsim/core/NodeKinds.h"
+#include "millsim/haptics/DeviceDriver.h"
 #include "millsim/haptics/HapticsRenderer.h"
 #include "millsim/haptics/MillTool.h"
+#include "millsim/haptics/Trajectory.h"
 
 namespace millsim {
+
+// A device that cannot be opened or failed; the message is for the user.
+struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct DriverOptions {
+  // Simulated devices: follow this trajectory instead of the one in the
+  // scene (millsim replay --trajectory). Hardware ignores it.
+  const Trajectory* trajectory = nullptr;
+};
 
 class HapticsDevice : public ChildNode {
 public:
@@ -39,6 +55,11 @@ public:
 
   // Raw device pose → calibrated world pose.
   Pose calibrate(const Pose& raw) const;
+
+  // Opens the haptic thread's side of this device for one run (scene thread).
+  // Throws DeviceError with a message for the user (what was looked for,
+  // what was found) when the device cannot be opened.
+  virtual std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const = 0;
   void initialize(DiagnosticSink& sink) override;
 };
 

@@ -78,7 +78,8 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
   summary.rate = rate;
   const double t0 = trajectory.startTime();
   // Frame times come from an integer count so that no rounding drifts.
-  const long frames = long(std::floor((trajectory.endTime() - t0) * rate + 1e-9)) + 1;
+  const double t1 = std::min(trajectory.endTime(), std::max(t0, options.until));
+  const long frames = long(std::floor((t1 - t0) * rate + 1e-9)) + 1;
   std::vector<double> frameUs;
   if (options.timing) frameUs.reserve(std::size_t(frames));
   std::string row;
@@ -107,6 +108,7 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
     summary.maxContacts = std::max(summary.maxContacts, out.contacts);
     summary.contactFrames += out.contacts > 0;
     summary.suppressed += (out.flags & kFlagNonFiniteSuppressed) != 0;
+    if (n + 1 == frames) summary.last = out;
     if (log) {
       row.clear();
       appendLogRow(row, t, pose, force, torque, out, us, sample.button, summary.removedVolume);

@@ -4,6 +4,7 @@
 // and writes one log row per frame. The same scene, trajectory and options
 // give the same bytes on every run (compute time is only logged on request,
 // because wall-clock time is the one thing that cannot repeat).
+#include <limits>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -20,6 +21,7 @@ struct ReplayOptions {
   double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
   std::string renderer;          // replace the scene's renderer with a default one of this type
   bool timing = false;           // fill frame_us with measured compute time
+  double until = std::numeric_limits<double>::infinity();  // stop after this trajectory time (s)
 };
 
 struct ReplaySummary {
@@ -33,6 +35,7 @@ struct ReplaySummary {
   double removedVolume = 0.0;  // m³
   long suppressed = 0;         // frames whose output was non-finite and zeroed
   double meanFrameUs = 0.0, p99FrameUs = 0.0;  // only with timing
+  HapticOutput last;           // the final frame's output (e.g. where to draw the tool)
 };
 
 // The log's header (the first 16 columns are the documented replay format).
