@@ -60,6 +60,10 @@ public:
   // Throws DeviceError with a message for the user (what was looked for,
   // what was found) when the device cannot be opened.
   virtual std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const = 0;
+  // True for simulated devices that follow a trajectory (TrajectoryDevice,
+  // HandDevice): replay hands them its trajectory. A replay of a hardware
+  // device plays the trajectory open loop instead.
+  virtual bool followsTrajectory() const { return false; }
   void initialize(DiagnosticSink& sink) override;
 };
 

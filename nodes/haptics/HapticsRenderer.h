@@ -21,6 +21,7 @@ class HapticScene;
 struct HapticInput {
   Pose device;       // burr centre and tool orientation, world frame
   double dt = 1e-3;  // seconds since the previous step
+  bool milling = false;  // the burr spins this frame (the device's main button)
 };
 
 struct HapticOutput {

@@ -37,6 +37,7 @@ public:
     tip_.reset(device.position);
     shaft_.reset(device.position);
     prevTip_ = device.position;
+    cutting_ = false;
     prevDir_ = device.shaftDirection();
     shaftContact_ = false;
     lastDrawn_ = device;
@@ -118,11 +119,23 @@ public:
     // cutting there would clear the surface before the proxy ever met it. In
     // contact the burr advances into the surface at the feed speed
     // |F| / feedResistance, never deeper than the probe.
+    // The advance accumulates while milling: the coverage stamp is
+    // idempotent, so a burr that only ever reached one frame's feed past the
+    // tangent position would stop cutting once that thin layer is gone.
     out.burrCuts = tipContact;
     out.burrCentre = drawTip;
-    if (tipContact) {
-      const double feed = std::min(glm::length(out.force) / p_.feedResistance * in.dt, glm::length(proxyPoint - c));
-      out.burrCentre = drawTip - scene.outwardNormal(proxyPoint) * feed;
+    // Depth is measured from the current tangent position, so when the
+    // proxy follows the receding surface the burr does not advance twice.
+    if (tipContact && in.milling) {
+      const glm::dvec3 n = scene.outwardNormal(proxyPoint);
+      const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
+      const double feed = glm::length(out.force) / p_.feedResistance * in.dt;
+      const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
+      out.burrCentre = drawTip - n * depth;
+      cutCentre_ = out.burrCentre;
+      cutting_ = true;
+    } else {
+      cutting_ = false;
     }
 
     prevTip_ = proxyPoint;
@@ -200,6 +213,8 @@ private:
   ProxyPoint tip_;
   ProxyPoint shaft_;
   glm::dvec3 prevTip_{0.0};
+  bool cutting_ = false;        // the burr cut last frame, at cutCentre_
+  glm::dvec3 cutCentre_{0.0};
   glm::dvec3 prevDir_{0.0, 1.0, 0.0};
   bool shaftContact_ = false;
   Pose lastDrawn_;

@@ -1,8 +1,10 @@
 #pragma once
-// Deterministic replay: steps a scene's device renderer open-loop through a
-// trajectory at a fixed rate in simulated time, milling when the button is on,
-// and writes one log row per frame. The same scene, trajectory and options
-// give the same bytes on every run (compute time is only logged on request,
+// Deterministic replay: runs a scene's device through a trajectory at a fixed
+// rate in simulated time (HapticLoop::stepSimulated), milling when the button
+// is on, and writes one log row per frame (FrameLog.h). A TrajectoryDevice
+// plays it open loop, a HandDevice follows it closed loop, a hardware device
+// is replaced by the trajectory. The same scene, trajectory and options give
+// the same bytes on every run (compute time is only logged on request,
 // because wall-clock time is the one thing that cannot repeat).
 #include <limits>
 #include <memory>
@@ -11,11 +13,10 @@
 
 #include "millsim/core/Scene.h"
 #include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/haptics/RunSetup.h"
 #include "millsim/haptics/Trajectory.h"
 
 namespace millsim {
-
-class HapticsDevice;
 
 struct ReplayOptions {
   double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
@@ -28,7 +29,7 @@ struct ReplaySummary {
   std::string rendererName;
   long frames = 0;
   double rate = 0.0;
-  double peakForce = 0.0;   // N, after the device limits
+  double peakForce = 0.0;   // N, after the safety layer
   double peakTorque = 0.0;  // N·m
   int maxContacts = 0;
   long contactFrames = 0;
@@ -38,17 +39,8 @@ struct ReplaySummary {
   HapticOutput last;           // the final frame's output (e.g. where to draw the tool)
 };
 
-// The log's header (the first 16 columns are the documented replay format).
-const char* replayLogHeader();
-// One log row for a frame.
-void appendLogRow(std::string& out, double t, const Pose& device, const glm::dvec3& force, const glm::dvec3& torque,
-                  const HapticOutput& o, double frameUs, bool button, double removedVolume);
-
 // Throws std::runtime_error with a clear message if the scene has no device,
 // no renderer, or an unknown --renderer type.
 ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* log, const ReplayOptions& options);
-
-// The first device node of the scene, or null.
-HapticsDevice* findDevice(const Scene& scene);
 
 }  // namespace millsim

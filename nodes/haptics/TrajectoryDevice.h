@@ -25,6 +25,7 @@ public:
   SFBool loop{this, "loop", Access::InitializeOnly, false, "Start again at the end of the trajectory."};
 
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
+  bool followsTrajectory() const override { return true; }
   void initialize(DiagnosticSink& sink) override;
 
   // The trajectory loaded from `url` at initialize(), or null if url is empty.

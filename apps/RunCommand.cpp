@@ -1,0 +1,146 @@
+// millsim run SCENE.x3d: runs a scene's device at its haptic rate in real
+// time on a dedicated thread, logs every frame, and prints the rate and force
+// statistics. The scene thread (this one) only drains logs and copies the
+// newest frame into the device node's fields; it never holds the haptic
+// thread up.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <thread>
+
+#include "Commands.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/haptics/FrameLog.h"
+#include "millsim/haptics/HapticsDevice.h"
+#include "millsim/haptics/RunSetup.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/x3d/X3DLoader.h"
+
+namespace millsim::app {
+
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+
+void printSummary(std::ostream& os, const LoopStats& s, const std::string& renderer, const std::string& device,
+                  double rate) {
+  os << std::fixed;
+  os << "ran " << s.frames << " frames in " << std::setprecision(2) << s.elapsed << " s with " << renderer << " on "
+     << device << " (desired " << std::setprecision(0) << rate << " Hz)\n";
+  os << "  haptic rate: mean " << std::setprecision(1) << s.meanRate() << " Hz, p1 " << s.p1Rate()
+     << " Hz, missed deadlines " << s.missedDeadlines << " of " << s.frames << " ("
+     << std::setprecision(2) << (s.frames ? 100.0 * double(s.missedDeadlines) / double(s.frames) : 0.0) << " %)\n";
+  os << "  compute per frame: mean " << std::setprecision(1) << s.computeUs.mean() << " µs, p99 "
+     << s.computeUs.percentile(0.99) << " µs, max " << s.computeUs.max() << " µs\n";
+  os << "  peak force " << std::setprecision(3) << s.peakForce << " N, peak torque " << std::setprecision(4)
+     << s.peakTorque << " N·m, frames in contact " << s.contactFrames << ", most contacts " << s.maxContacts << "\n";
+  os << "  removed volume " << std::setprecision(3) << s.removedVolume * 1e9 << " mm³\n";
+  os << "  safety: clamped " << s.safety.clamped << ", watchdog trips " << s.safety.watchdogTrips << ", non-finite "
+     << s.safety.nonFinite << "; device: sequence gaps " << s.device.sequenceGaps << ", checksum errors "
+     << s.device.checksumErrors << "; log records dropped " << s.recordsDropped << "\n";
+  os << "  real-time priority: " << (s.realTimePriority ? "SCHED_FIFO" : "not granted (normal priority)") << "\n";
+  os.unsetf(std::ios::fixed);
+}
+
+}  // namespace
+
+void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
+  auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
+  struct Args {
+    std::string scene, log, renderer, trajectory;
+    double duration = 0.0;
+    bool noGraphics = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("scene", args->scene, "X3D scene file")->required();
+  cmd->add_option("--duration", args->duration,
+                  "Seconds to run (default: the device's trajectory; a hardware device runs until Ctrl-C)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame, with period_us)");
+  cmd->add_option("--renderer", args->renderer, "Use a default renderer of this type instead of the scene's");
+  cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV for a simulated device instead of its url");
+  cmd->add_flag("--no-graphics", args->noGraphics, "Run without a graphics thread (no GL context, no meshes)");
+  cmd->callback([args, &global, &result] {
+    LoadOptions lo;
+    lo.plugins.allowAnyPath = global.allowPluginPath;
+    LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
+    std::cerr << r.report();
+    if (!r.ok()) {
+      result = kExitBadInput;
+      return;
+    }
+    std::unique_ptr<HapticLoop> loop;
+    CompiledRun run;
+    double duration = 0.0;
+    try {
+      run = compileRun(*r.scene, args->renderer);
+      std::optional<Trajectory> trajectory;
+      if (!args->trajectory.empty()) trajectory = Trajectory::load(args->trajectory);
+      auto driver = run.device->openDriver(DriverOptions{trajectory ? &*trajectory : nullptr});
+      duration = args->duration > 0.0 ? args->duration : driver->naturalDuration();
+      loop = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+    } catch (const std::exception& e) {
+      std::cerr << "millsim run: error: " << e.what() << "\n";
+      result = kExitBadInput;
+      return;
+    }
+    std::ofstream log;
+    if (!args->log.empty()) {
+      log.open(args->log, std::ios::binary);
+      if (!log) {
+        std::cerr << "millsim run: error: " << args->log << ": cannot write the log file\n";
+        result = kExitBadInput;
+        return;
+      }
+    }
+    FrameLogWriter writer(args->log.empty() ? nullptr : &log);
+    const std::string deviceName =
+        run.device->typeName() + (run.device->defName().empty() ? "" : " '" + run.device->defName() + "'");
+    if (std::isinf(duration)) std::cout << "running " << deviceName << " until Ctrl-C\n" << std::flush;
+
+    gInterrupted.store(false);
+    auto previousInt = std::signal(SIGINT, onInterrupt);
+    auto previousTerm = std::signal(SIGTERM, onInterrupt);
+    loop->start(duration);
+    // The scene thread's part: drain the log, update the device fields.
+    while (!loop->finished()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (gInterrupted.load()) loop->stop();
+      if (writer.drain(*loop) > 0) publishToDevice(*run.device, writer.last(), run.settings.rate);
+      loop->collectRetired();
+    }
+    loop->join();
+    writer.drain(*loop);
+    std::signal(SIGINT, previousInt);
+    std::signal(SIGTERM, previousTerm);
+    if (log.is_open()) {
+      log.close();
+      if (!log) {
+        std::cerr << "millsim run: error: " << args->log << ": writing the log failed\n";
+        result = kExitFailure;
+        return;
+      }
+    }
+    const LoopStats s = loop->stats();
+    for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
+      auto& v = run.scene->volume(i);
+      if (v.node) v.node->removedVolume.set(float(v.miller.totalRemoved()));
+    }
+    printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
+    if (!loop->failure().empty()) {
+      std::cerr << "millsim run: error: " << loop->failure() << " (output zeroed, loop stopped"
+                << (args->log.empty() ? "" : ", log written to " + args->log) << ")\n";
+      result = kExitFailure;
+      return;
+    }
+    result = kExitOk;
+  });
+}
+
+}  // namespace millsim::app
