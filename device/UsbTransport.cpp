@@ -50,6 +50,30 @@ std::string readString(libusb_device_handle* h, std::uint8_t index) {
   return s;
 }
 
+// A device's sysfs attribute ("product", "serial"), or empty. Linux names a
+// USB device's sysfs node <bus>-<port>.<port>…, or usb<bus> for a root hub.
+std::string sysfsAttribute(libusb_device* dev, const char* name) {
+  std::array<std::uint8_t, 8> ports{};
+  const int n = libusb_get_port_numbers(dev, ports.data(), static_cast<int>(ports.size()));
+  std::string path = "/sys/bus/usb/devices/";
+  if (n <= 0) {
+    path += "usb" + std::to_string(libusb_get_bus_number(dev));
+  } else {
+    path += std::to_string(libusb_get_bus_number(dev)) + "-";
+    for (int i = 0; i < n; ++i) path += (i ? "." : "") + std::to_string(ports[static_cast<std::size_t>(i)]);
+  }
+  path += std::string("/") + name;
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  if (!f) return {};
+  char buf[256] = {};
+  const bool ok = std::fgets(buf, sizeof buf, f) != nullptr;
+  std::fclose(f);
+  if (!ok) return {};
+  std::string s(buf);
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
 // True if the active configuration has `iface` with interrupt endpoints
 // `in` and `out`; otherwise says what it found in `why`.
 bool hasEndpoints(libusb_device* dev, const UsbMatch& m, std::string& why) {
@@ -169,19 +193,23 @@ std::unique_ptr<UsbTransport> UsbTransport::open(const UsbMatch& m) {
     const std::string where = "bus " + std::to_string(libusb_get_bus_number(dev)) + " device " +
                               std::to_string(libusb_get_device_address(dev));
     const bool idMatch = dd.idVendor == m.vendorId && dd.idProduct == m.productId;
+    // Strings from sysfs first: no need to open (or have access to) devices
+    // that are not ours, and no control transfer.
+    std::string product = sysfsAttribute(dev, "product"), serial;
+    if (!idMatch) {
+      seen.push_back(vidPid(dd.idVendor, dd.idProduct) + (product.empty() ? "" : " \"" + product + "\"") + " (" +
+                     where + ")");
+      continue;
+    }
     libusb_device_handle* h = nullptr;
     const int openResult = libusb_open(dev, &h);
-    std::string product, serial;
+    serial = sysfsAttribute(dev, "serial");
     if (openResult == 0) {
-      product = readString(h, dd.iProduct);
-      if (idMatch) serial = readString(h, dd.iSerialNumber);
+      if (product.empty()) product = readString(h, dd.iProduct);
+      if (serial.empty()) serial = readString(h, dd.iSerialNumber);
     }
     seen.push_back(vidPid(dd.idVendor, dd.idProduct) + (product.empty() ? "" : " \"" + product + "\"") +
                    (serial.empty() ? "" : " serial '" + serial + "'") + " (" + where + ")");
-    if (!idMatch) {
-      if (h) libusb_close(h);
-      continue;
-    }
     std::string why;
     if (openResult != 0)
       why = std::string("could not be opened (") + libusb_strerror(openResult) + ")" +

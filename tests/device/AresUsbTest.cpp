@@ -14,8 +14,9 @@ namespace {
 
 bool underUmockdev() { return std::getenv("UMOCKDEV_DIR") != nullptr; }
 
-std::unique_ptr<DeviceDriver> openDefault() {
-  AresDevice node;  // 1209:0001, any serial number
+std::unique_ptr<DeviceDriver> open(const std::string& serial) {
+  AresDevice node;  // 1209:0001
+  node.serialNumber.set(serial);
   return node.openDriver({});
 }
 
@@ -26,7 +27,7 @@ std::unique_ptr<DeviceDriver> openDefault() {
 // then the device is unplugged.
 TEST(AresUsb, StreamsThenReportsTheUnplug) {
   ASSERT_TRUE(underUmockdev()) << "run this test under umockdev-run";
-  std::unique_ptr<DeviceDriver> d = openDefault();
+  std::unique_ptr<DeviceDriver> d = open("ARES-TEST-0001");  // serial from sysfs
 
   const double dt = 0.001;
   DeviceReading r = d->read(0.0, dt);
@@ -59,7 +60,7 @@ TEST(AresUsb, StreamsThenReportsTheUnplug) {
   r = d->read(4 * dt, dt);  // unplugged
   EXPECT_FALSE(r.valid);
   ASSERT_TRUE(d->failed());
-  EXPECT_NE(d->failure().find("ARES device 1209:0001"), std::string::npos) << d->failure();
+  EXPECT_NE(d->failure().find("ARES device 1209:0001 serial 'ARES-TEST-0001'"), std::string::npos) << d->failure();
   EXPECT_NE(d->failure().find("unplugged"), std::string::npos) << d->failure();
 
   const DeviceCounters c = d->counters();
@@ -85,6 +86,33 @@ TEST(AresUsb, NoMatchingDeviceSaysWhatWasLookedForAndWhatWasSeen) {
     std::printf("%s\n", m.c_str());
     EXPECT_NE(m.find("ARES device 1209:0002"), std::string::npos) << m;
     EXPECT_NE(m.find("ARES-42"), std::string::npos) << m;
-    EXPECT_NE(m.find("1209:0001"), std::string::npos) << "the emulated device should be listed as seen: " << m;
+    EXPECT_NE(m.find("1209:0001 \"ARES haptic device (emulated)\""), std::string::npos)
+        << "the emulated device should be listed as seen: " << m;
   }
+}
+
+TEST(AresUsb, WrongSerialNumberIsRejectedNamingTheOneFound) {
+  ASSERT_TRUE(underUmockdev()) << "run this test under umockdev-run";
+  try {
+    open("ARES-TEST-9999");
+    FAIL() << "opened a device with another serial number";
+  } catch (const DeviceError& e) {
+    const std::string m = e.what();
+    std::printf("%s\n", m.c_str());
+    EXPECT_NE(m.find("with serial number 'ARES-TEST-9999'"), std::string::npos) << m;
+    EXPECT_NE(m.find("its serial number is 'ARES-TEST-0001'"), std::string::npos) << m;
+  }
+}
+
+// Run with ares-stop.ioctl: the script ends with three zero, disabled
+// commands, so stop() must send exactly those (umockdev rejects any other bytes).
+TEST(AresUsb, StopSendsZeroCommands) {
+  ASSERT_TRUE(underUmockdev()) << "run this test under umockdev-run";
+  std::unique_ptr<DeviceDriver> d = open("");
+  ASSERT_TRUE(d->read(0.0, 0.001).valid) << d->failure();
+  d->write({0.5, -1.25, 2.0}, {0.0, 0.125, -0.25});
+  d->stop();
+  EXPECT_FALSE(d->failed()) << d->failure();
+  EXPECT_EQ(d->counters().framesSent, 4u);
+  EXPECT_EQ(d->counters().transferErrors, 0u);
 }
