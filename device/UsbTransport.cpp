@@ -252,7 +252,8 @@ std::unique_ptr<UsbTransport> UsbTransport::open(const UsbMatch& m) {
 
   std::string msg = "no usable " + wanted + " found.";
   for (const std::string& r : rejected) msg += "\n  rejected " + r;
-  msg += seen.empty() ? "\n  No USB devices were seen." : "\n  USB devices seen:";
+  msg += seen.empty() ? "\n  No USB devices were seen (is it plugged in and powered? Does this system show a USB bus?)"
+                      : "\n  USB devices seen:";
   for (const std::string& s : seen) msg += "\n    " + s;
   throw DeviceError(msg);
 }
