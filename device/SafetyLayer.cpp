@@ -21,7 +21,11 @@ void requirePositive(double v, const char* name, bool allowZero) {
 
 // Scales v down to length `limit` if longer; true if it did.
 bool clampTo(glm::dvec3& v, double limit) {
-  const double len = glm::length(v);
+  // Scaled by the largest component first so that huge finite inputs (1e200 N)
+  // are clamped along their direction instead of overflowing to a zero vector.
+  const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (m == 0.0) return false;
+  const double len = m * glm::length(v / m);
   if (len <= limit) return false;
   v *= limit / len;
   return true;
@@ -38,13 +42,27 @@ SafetyLayer::SafetyLayer(const SafetyLimits& limits) : limits_(limits) {
 
 SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque, double t, double sampleTime) {
   SafeWrench out;
+  // A non-finite clock is a late frame that must not become the reference for
+  // the next watchdog check or ramp (NaN comparisons are all false: a NaN
+  // rampStart_ would skip the soft start).
+  if (!std::isfinite(t) || !std::isfinite(sampleTime)) {
+    ++counters_.watchdogTrips;
+    out.events |= kSafetyWatchdog;
+    if (std::isfinite(t)) {
+      previousFrame_ = t;
+      rampStart_ = t;
+      started_ = true;
+    } else {
+      started_ = false;  // the next finite frame restarts the ramp from itself
+    }
+    return out;
+  }
   if (!started_) {
     started_ = true;
     rampStart_ = t;
     previousFrame_ = t;
   }
-  const bool late = t - previousFrame_ > limits_.watchdogTimeout || t - sampleTime > limits_.watchdogTimeout ||
-                    !std::isfinite(t) || !std::isfinite(sampleTime);
+  const bool late = t - previousFrame_ > limits_.watchdogTimeout || t - sampleTime > limits_.watchdogTimeout;
   previousFrame_ = t;
   if (late) {
     ++counters_.watchdogTrips;

@@ -36,6 +36,7 @@ struct SafeWrench {
   std::uint32_t events = 0;
 };
 
+// Frames affected, per cause (a 20 ms stall at 1 kHz counts ~15 watchdog frames).
 struct SafetyCounters {
   std::uint64_t nonFinite = 0, watchdogTrips = 0, clamped = 0;
 };

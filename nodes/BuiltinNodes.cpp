@@ -2,6 +2,7 @@
 // here (or, for integrators, in a plugin's entry point), never by static
 // initialisers.
 #include "millsim/core/NodeRegistry.h"
+#include "millsim/haptics/AresDevice.h"
 #include "millsim/haptics/HandDevice.h"
 #include "millsim/haptics/LineProxyRenderer.h"
 #include "millsim/haptics/MillTool.h"
@@ -15,7 +16,7 @@ void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &TrajectoryDevice::type(),
-                            &HandDevice::type()})
+                            &HandDevice::type(), &AresDevice::type()})
     r.add(*t);
 }
 

@@ -1,0 +1,203 @@
+// SafetyLayer: clamp, soft-start ramp, NaN/Inf zeroing, watchdog and ramp
+// restart, invalid limits. Times are synthetic: no clocks, no timing asserts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/device/SafetyLayer.h"
+
+using namespace millsim;
+
+namespace {
+
+constexpr double kDt = 0.001;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+SafetyLimits noRamp() {
+  SafetyLimits l;
+  l.forceLimit = 10.0;
+  l.torqueLimit = 0.5;
+  l.softStartTime = 0.0;
+  l.watchdogTimeout = 0.005;
+  return l;
+}
+
+}  // namespace
+
+TEST(SafetyLayer, PassesSmallWrenchesUnchanged) {
+  SafetyLayer s(noRamp());
+  const SafeWrench w = s.filter({1.0, -2.0, 3.0}, {0.1, 0.0, -0.2}, 0.0, 0.0);
+  EXPECT_EQ(w.force, glm::dvec3(1.0, -2.0, 3.0));
+  EXPECT_EQ(w.torque, glm::dvec3(0.1, 0.0, -0.2));
+  EXPECT_EQ(w.events, 0u);
+}
+
+TEST(SafetyLayer, ClampsMagnitudeKeepingDirection) {
+  SafetyLayer s(noRamp());
+  const SafeWrench w = s.filter({30.0, 40.0, 0.0}, {0.0, 0.0, -2.0}, 0.0, 0.0);
+  EXPECT_NEAR(glm::length(w.force), 10.0, 1e-12);
+  EXPECT_NEAR(w.force.x / w.force.y, 0.75, 1e-12);
+  EXPECT_NEAR(glm::length(w.torque), 0.5, 1e-12);
+  EXPECT_LT(w.torque.z, 0.0);
+  EXPECT_TRUE(w.events & kSafetyClamped);
+  EXPECT_EQ(s.counters().clamped, 1u);
+  // Only the torque over its limit: still one clamped frame.
+  const SafeWrench w2 = s.filter({1.0, 0.0, 0.0}, {0.0, 3.0, 0.0}, kDt, kDt);
+  EXPECT_EQ(w2.force, glm::dvec3(1.0, 0.0, 0.0));
+  EXPECT_NEAR(w2.torque.y, 0.5, 1e-12);
+  EXPECT_EQ(s.counters().clamped, 2u);
+}
+
+TEST(SafetyLayer, HugeFiniteForceIsClampedNotPassed) {
+  SafetyLayer s(noRamp());
+  const SafeWrench w = s.filter({1e300, 1e300, 0.0}, {0.0, 0.0, 0.0}, 0.0, 0.0);
+  EXPECT_LE(glm::length(w.force), 10.0 + 1e-9);
+  EXPECT_TRUE(std::isfinite(w.force.x));
+}
+
+TEST(SafetyLayer, SoftStartRampsLinearlyFromZero) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.1;
+  SafetyLayer s(l);
+  double previous = -1.0;
+  for (int i = 0; i <= 120; ++i) {
+    const double t = 5.0 + i * kDt;  // the run's clock need not start at zero
+    const SafeWrench w = s.filter({0.0, 0.0, 4.0}, {0.0, 0.2, 0.0}, t, t);
+    const double expected = 4.0 * std::min(1.0, i * kDt / 0.1);
+    EXPECT_NEAR(w.force.z, expected, 1e-9) << "frame " << i;
+    EXPECT_NEAR(w.torque.y, 0.2 * expected / 4.0, 1e-9) << "frame " << i;
+    EXPECT_GE(w.force.z, previous);
+    previous = w.force.z;
+    if (i < 99 || i > 101) {
+      EXPECT_EQ(bool(w.events & kSafetyRamping), i < 100) << "frame " << i;
+    }
+  }
+}
+
+TEST(SafetyLayer, RampHappensBeforeClamp) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.1;
+  l.watchdogTimeout = 1.0;  // a 50 ms step between frames is not late here
+  SafetyLayer s(l);
+  s.filter({0, 0, 100.0}, {}, 0.0, 0.0);
+  // Halfway through the ramp 100 N is scaled to 50 N, then clamped to 10 N.
+  const SafeWrench w = s.filter({0, 0, 100.0}, {}, 0.05, 0.05);
+  EXPECT_NEAR(w.force.z, 10.0, 1e-9);
+  EXPECT_TRUE(w.events & kSafetyClamped);
+  EXPECT_TRUE(w.events & kSafetyRamping);
+}
+
+TEST(SafetyLayer, NaNOrInfAnywhereZeroesTheFrameAndRestartsTheRamp) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.01;
+  SafetyLayer s(l);
+  double t = 0.0;
+  for (int i = 0; i < 20; ++i, t += kDt) s.filter({0, 0, 1.0}, {}, t, t);  // ramp done
+  EXPECT_NEAR(s.filter({0, 0, 1.0}, {}, t, t).force.z, 1.0, 1e-12);
+  const glm::dvec3 bad[] = {{kNaN, 0, 0}, {0, kInf, 0}, {0, 0, -kInf}};
+  std::uint64_t n = 0;
+  for (const glm::dvec3& b : bad) {
+    for (int which = 0; which < 2; ++which) {
+      t += kDt;
+      const SafeWrench w = which == 0 ? s.filter(b, {0.1, 0, 0}, t, t) : s.filter({1, 0, 0}, b, t, t);
+      EXPECT_EQ(w.force, glm::dvec3(0.0));
+      EXPECT_EQ(w.torque, glm::dvec3(0.0));
+      EXPECT_TRUE(w.events & kSafetyNonFinite);
+      EXPECT_EQ(s.counters().nonFinite, ++n);
+    }
+  }
+  // The next good frame starts a new ramp from the last bad one.
+  t += kDt;
+  const SafeWrench w = s.filter({0, 0, 1.0}, {}, t, t);
+  EXPECT_NEAR(w.force.z, 0.1, 1e-9);
+  EXPECT_TRUE(w.events & kSafetyRamping);
+}
+
+TEST(SafetyLayer, LateFrameTripsTheWatchdogAndRestartsTheRamp) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.01;
+  SafetyLayer s(l);
+  double t = 0.0;
+  for (int i = 0; i < 20; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);
+  // The loop stalls for 20 ms.
+  t += 0.020;
+  SafeWrench w = s.filter({0, 0, 2.0}, {0, 0.1, 0}, t, t);
+  EXPECT_EQ(w.force, glm::dvec3(0.0));
+  EXPECT_EQ(w.torque, glm::dvec3(0.0));
+  EXPECT_TRUE(w.events & kSafetyWatchdog);
+  EXPECT_EQ(s.counters().watchdogTrips, 1u);
+  // On time again: ramps up from zero over softStartTime.
+  t += kDt;
+  w = s.filter({0, 0, 2.0}, {}, t, t);
+  EXPECT_NEAR(w.force.z, 2.0 * 0.1, 1e-9);
+  for (int i = 0; i < 10; ++i) t += kDt, w = s.filter({0, 0, 2.0}, {}, t, t);
+  EXPECT_NEAR(w.force.z, 2.0, 1e-12);
+  EXPECT_FALSE(w.events & kSafetyRamping);
+}
+
+TEST(SafetyLayer, StaleDeviceSampleTripsTheWatchdog) {
+  SafetyLayer s(noRamp());
+  double t = 0.0;
+  const double sample = 0.0;  // the device stopped delivering at t = 0
+  int zeroed = 0;
+  for (int i = 0; i < 10; ++i, t += kDt) {
+    const SafeWrench w = s.filter({1, 0, 0}, {}, t, sample);
+    if (w.events & kSafetyWatchdog) {
+      ++zeroed;
+      EXPECT_EQ(w.force, glm::dvec3(0.0));
+    } else {
+      EXPECT_EQ(w.force.x, 1.0);
+    }
+    EXPECT_EQ(bool(w.events & kSafetyWatchdog), t - sample > 0.005 + 1e-12) << "t " << t;
+  }
+  EXPECT_EQ(zeroed, 4);  // t = 6..9 ms
+  EXPECT_EQ(s.counters().watchdogTrips, 4u);
+}
+
+TEST(SafetyLayer, NonFiniteTimeTripsTheWatchdogAndDoesNotDisableTheRamp) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.1;
+  SafetyLayer s(l);
+  EXPECT_TRUE(s.filter({0, 0, 5.0}, {}, kNaN, 0.0).events & kSafetyWatchdog);
+  // The first finite frame after a bad clock must still start from zero.
+  const SafeWrench w = s.filter({0, 0, 5.0}, {}, 0.0, 0.0);
+  EXPECT_EQ(w.force, glm::dvec3(0.0));
+  EXPECT_NEAR(s.filter({0, 0, 5.0}, {}, 0.05, 0.05).force.z, 0.0, 1e-12) << "a 50 ms gap is late";
+  EXPECT_TRUE(s.filter({0, 0, 5.0}, {}, 0.051, kNaN).events & kSafetyWatchdog);
+  const SafeWrench after = s.filter({0, 0, 5.0}, {}, 0.052, 0.052);
+  EXPECT_NEAR(after.force.z, 5.0 * 0.001 / 0.1, 1e-9);
+}
+
+TEST(SafetyLayer, RejectsInvalidLimitsNamingTheValue) {
+  auto expectThrow = [](SafetyLimits l, const char* name) {
+    try {
+      SafetyLayer s(l);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  for (double bad : {0.0, -1.0, kNaN, kInf}) {
+    SafetyLimits l = noRamp();
+    l.forceLimit = bad;
+    expectThrow(l, "forceLimit");
+    l = noRamp();
+    l.torqueLimit = bad;
+    expectThrow(l, "torqueLimit");
+    l = noRamp();
+    l.watchdogTimeout = bad;
+    expectThrow(l, "watchdogTimeout");
+  }
+  for (double bad : {-0.1, kNaN, kInf}) {
+    SafetyLimits l = noRamp();
+    l.softStartTime = bad;
+    expectThrow(l, "softStartTime");
+  }
+  SafetyLimits ok = noRamp();
+  ok.softStartTime = 0.0;
+  EXPECT_NO_THROW(SafetyLayer{ok});
+}
