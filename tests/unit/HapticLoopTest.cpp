@@ -1,0 +1,253 @@
+// The haptic loop: hand-off structures between threads, the safety layer on
+// the device port, renderer swaps, device failure, and the real-time thread.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/haptics/FrameLog.h"
+#include "millsim/haptics/HapticLoop.h"
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/haptics/SpscRing.h"
+#include "millsim/haptics/TripleBuffer.h"
+
+using namespace millsim;
+
+namespace {
+
+// An algorithm that outputs a fixed force (or whatever `make` says).
+class ConstantAlgorithm final : public HapticAlgorithm {
+public:
+  explicit ConstantAlgorithm(glm::dvec3 force, glm::dvec3 torque = glm::dvec3(0.0)) : force_(force), torque_(torque) {}
+  void reset(const Pose&) override {}
+  HapticOutput step(HapticScene&, const HapticInput& in) override {
+    HapticOutput out;
+    out.force = force_;
+    out.torque = torque_;
+    out.drawnTool = in.device;
+    out.burrCuts = false;
+    ++steps;
+    return out;
+  }
+  std::string name() const override { return "Constant"; }
+  long steps = 0;
+
+private:
+  glm::dvec3 force_, torque_;
+};
+
+// A device that stands still, records what it was sent, and can be told to
+// drop samples or fail.
+struct FakeDevice final : DeviceDriver {
+  struct Shared {
+    std::vector<glm::dvec3> forces, torques;
+    long invalidFrom = std::numeric_limits<long>::max(), failAt = std::numeric_limits<long>::max();
+    bool stopped = false;
+  };
+  explicit FakeDevice(Shared& s) : s_(s) { s_.forces.reserve(100000); }
+  DeviceReading read(double, double) override {
+    ++reads_;
+    return {Pose{glm::dvec3(0.0, 0.01, 0.0), glm::dquat(1, 0, 0, 0)}, false, reads_ < s_.invalidFrom};
+  }
+  void write(const glm::dvec3& f, const glm::dvec3& t) override {
+    if (s_.forces.size() < s_.forces.capacity()) {
+      s_.forces.push_back(f);
+      s_.torques.push_back(t);
+    }
+  }
+  bool failed() const override { return reads_ >= s_.failAt; }
+  std::string failure() const override { return "fake device unplugged"; }
+  void stop() override { s_.stopped = true; }
+  long reads_ = 0;
+  Shared& s_;
+};
+
+LoopSettings settings(double softStart = 0.0) {
+  LoopSettings s;
+  s.rate = 1000.0;
+  s.limits.forceLimit = 5.0;
+  s.limits.torqueLimit = 0.1;
+  s.limits.softStartTime = softStart;
+  s.timing = false;
+  return s;
+}
+
+}  // namespace
+
+TEST(SpscRing, KeepsOrderAndCountsDropsWhenFull) {
+  SpscRing<int> ring(3);
+  for (int i = 0; i < 5; ++i) ring.push(i);
+  std::vector<int> got;
+  ring.drain([&](int v) { got.push_back(v); });
+  EXPECT_EQ(got, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(ring.dropped(), 2u);
+}
+
+TEST(SpscRing, TwoThreadsSeeEveryRecordInOrder) {
+  SpscRing<long> ring(64);
+  constexpr long kN = 200000;
+  std::thread producer([&] {
+    for (long i = 0; i < kN; ++i)
+      while (!ring.push(i)) std::this_thread::yield();
+  });
+  long expected = 0;
+  bool ordered = true;
+  while (expected < kN)
+    ring.drain([&](long v) { ordered &= v == expected++; });
+  producer.join();
+  EXPECT_TRUE(ordered);
+}
+
+TEST(TripleBuffer, ReaderGetsTheNewestWholeValue) {
+  struct Pair {
+    long a = 0, b = 0;
+  };
+  TripleBuffer<Pair> buffer;
+  std::atomic<bool> done{false};
+  std::thread writer([&] {
+    for (long i = 1; i <= 200000; ++i) {
+      buffer.back() = {i, -i};
+      buffer.publish();
+    }
+    done = true;
+  });
+  long last = 0;
+  bool torn = false, backwards = false;
+  while (!done || buffer.hasNew()) {
+    const Pair& p = buffer.read();
+    torn |= p.a != -p.b;
+    backwards |= p.a < last;
+    last = p.a;
+  }
+  writer.join();
+  EXPECT_FALSE(torn);
+  EXPECT_FALSE(backwards);
+  EXPECT_EQ(buffer.read().a, 200000);
+}
+
+TEST(HapticLoop, ClampsRampsAndZeroesNonFiniteOutput) {
+  HapticScene scene;
+  FakeDevice::Shared dev;
+  {
+    HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0, 20, 0)),
+                    std::make_unique<FakeDevice>(dev), settings(0.1));
+    for (int i = 0; i < 300; ++i) loop.stepSimulated();
+    loop.finish();
+  }
+  ASSERT_EQ(dev.forces.size(), 300u);
+  // Soft start: 20 N ramps linearly over 0.1 s (and is clamped to 5 N from 25 ms on).
+  EXPECT_NEAR(dev.forces[10].y, 20.0 * 0.010 / 0.1, 1e-9);
+  EXPECT_NEAR(dev.forces[100].y, 5.0, 1e-9);
+  EXPECT_NEAR(dev.forces[299].y, 5.0, 1e-9);
+  for (std::size_t i = 1; i < dev.forces.size(); ++i) EXPECT_LE(dev.forces[i].y - dev.forces[i - 1].y, 0.21);
+  EXPECT_TRUE(dev.stopped);
+
+  FakeDevice::Shared nan;
+  HapticLoop loop(scene,
+                  std::make_unique<ConstantAlgorithm>(glm::dvec3(std::numeric_limits<double>::quiet_NaN(), 0, 0),
+                                                      glm::dvec3(0, std::numeric_limits<double>::infinity(), 0)),
+                  std::make_unique<FakeDevice>(nan), settings());
+  for (int i = 0; i < 10; ++i) loop.stepSimulated();
+  for (std::size_t i = 0; i < nan.forces.size(); ++i) {
+    EXPECT_EQ(nan.forces[i], glm::dvec3(0.0));
+    EXPECT_EQ(nan.torques[i], glm::dvec3(0.0));
+  }
+  EXPECT_EQ(loop.stats().safety.nonFinite, 10u);
+}
+
+TEST(HapticLoop, StaleDeviceSamplesTripTheWatchdog) {
+  HapticScene scene;
+  FakeDevice::Shared dev;
+  dev.invalidFrom = 50;  // the device stops answering after 49 samples
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(1, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  settings());
+  for (int i = 0; i < 100; ++i) loop.stepSimulated();
+  ASSERT_EQ(dev.forces.size(), 100u);
+  EXPECT_EQ(dev.forces[48], glm::dvec3(1, 0, 0));
+  // The 5 ms watchdog: the pose is held for a few frames, then output is zero.
+  EXPECT_EQ(dev.forces[52], glm::dvec3(1, 0, 0));
+  EXPECT_EQ(dev.forces[60], glm::dvec3(0.0));
+  EXPECT_EQ(dev.forces[99], glm::dvec3(0.0));
+  EXPECT_GT(loop.stats().safety.watchdogTrips, 40u);
+}
+
+TEST(HapticLoop, SwapsRenderersWithACrossFadeAndRetiresTheOldOne) {
+  HapticScene scene;
+  FakeDevice::Shared dev;
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(1, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  settings());
+  for (int i = 0; i < 10; ++i) loop.stepSimulated();
+  ASSERT_TRUE(loop.replaceRenderer(std::make_unique<ConstantAlgorithm>(glm::dvec3(3, 0, 0))));
+  for (int i = 0; i < 200; ++i) loop.stepSimulated();
+  EXPECT_NEAR(dev.forces[9].x, 1.0, 1e-12);
+  EXPECT_NEAR(dev.forces[60].x, 1.0 + 2.0 * 0.051 / 0.1, 1e-9);  // halfway through the 100 ms fade
+  EXPECT_NEAR(dev.forces[209].x, 3.0, 1e-12);
+  loop.collectRetired();  // frees the first algorithm here, not on the haptic thread
+}
+
+TEST(HapticLoop, LogRowsCarryEveryFrameAndThePeriod) {
+  HapticScene scene;
+  FakeDevice::Shared dev;
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0.5, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  settings());
+  std::ostringstream out;
+  FrameLogWriter writer(&out);
+  for (int i = 0; i < 3; ++i) {
+    loop.stepSimulated();
+    writer.drain(loop);
+  }
+  const std::string log = out.str();
+  EXPECT_EQ(log.substr(0, log.find('\n') + 1), frameLogHeader());
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 4);
+  EXPECT_NE(log.find("\n0.002,0,0.01,0,1,0,0,0,0.5,0,0,"), std::string::npos) << log;
+  EXPECT_EQ(log.substr(log.size() - 6), ",1000\n");
+}
+
+TEST(HapticLoop, RealTimeThreadRunsStopsOnDeviceFailureAndZeroesOutput) {
+  HapticScene scene;
+  FakeDevice::Shared dev;
+  dev.failAt = 300;
+  LoopSettings s = settings();
+  s.timing = true;
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(1, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  s);
+  FrameLogWriter writer(nullptr);
+  loop.start(30.0);  // the failure must end it long before
+  long lastFrame = -1;
+  bool contiguous = true;
+  while (!loop.finished()) {
+    loop.records().drain([&](const FrameRecord& r) {
+      contiguous &= r.frame == lastFrame + 1;
+      lastFrame = r.frame;
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  loop.join();
+  loop.records().drain([&](const FrameRecord& r) {
+    contiguous &= r.frame == lastFrame + 1;
+    lastFrame = r.frame;
+  });
+  EXPECT_TRUE(contiguous);
+  EXPECT_EQ(lastFrame, 299);
+  EXPECT_EQ(loop.failure(), "fake device unplugged");
+  EXPECT_TRUE(dev.stopped);
+  const LoopStats st = loop.stats();
+  EXPECT_EQ(st.frames, 300);
+  // Loose bounds only: a loaded CI machine may be slow, but not 10× slow.
+  EXPECT_GT(st.meanRate(), 100.0);
+  EXPECT_LT(st.meanRate(), 1100.0);
+  EXPECT_EQ(st.recordsDropped, 0u);
+}
+
+TEST(HapticLoop, RejectsANonPositiveRate) {
+  HapticScene scene;
+  FakeDevice::Shared dev;
+  LoopSettings s = settings();
+  s.rate = 0.0;
+  EXPECT_THROW(HapticLoop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0.0)),
+                          std::make_unique<FakeDevice>(dev), s),
+               std::invalid_argument);
+}
