@@ -134,8 +134,9 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
     if (!loop->failure().empty()) {
-      std::cerr << "millsim run: error: " << loop->failure() << " (output zeroed, loop stopped"
-                << (args->log.empty() ? "" : ", log written to " + args->log) << ")\n";
+      // The loop has already zeroed the output and released the device.
+      std::cerr << "millsim run: error: " << loop->failure()
+                << (args->log.empty() ? "" : " (the log up to that frame is in " + args->log + ")") << "\n";
       result = kExitFailure;
       return;
     }

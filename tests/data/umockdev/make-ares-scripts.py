@@ -7,6 +7,7 @@ byte layout. Run from anywhere; it rewrites the files next to itself:
   ares.umockdev   the device (sysfs attributes, USB descriptors)
   ares.ioctl      the usbfs dialogue: state frames in, commands out, then unplug
   ares-stop.ioctl one frame, one command, then the zero commands of a clean stop
+  ares-run.ioctl  50 frames of `millsim run` in free space, then unplug
 """
 import os
 import struct
@@ -71,6 +72,16 @@ stop = [urb(EP_IN, state(1, 1000, *POSES[0]), 64),
         urb(EP_OUT, command(1, *FORCES[0]), 40)]
 stop += [urb(EP_OUT, command(seq, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), flags=0), 40) for seq in (2, 3, 4)]
 write_script('ares-stop.ioctl', stop)
+
+# millsim run against the device (tests/CMakeLists.txt, run:ares-unplugged):
+# the tool hangs in free space above the tooth, so every command is a zero
+# wrench with enable set; after 50 frames the device is unplugged.
+run = []
+for seq in range(1, 51):
+    run.append(urb(EP_IN, state(seq, 1000 * seq, (0.0, 0.05, 0.0), (1.0, 0.0, 0.0, 0.0)), 64))
+    run.append(urb(EP_OUT, command(seq, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)), 40))
+run.append(urb(EP_IN, b'', 64, status=-ENODEV))
+write_script('ares-run.ioctl', run)
 
 # USB descriptors (docs/ares-protocol.md, "USB descriptors"): device, then the
 # configuration with one vendor-specific interface and two interrupt endpoints.
