@@ -89,27 +89,38 @@ private:
     return trajectory_.at(start + local);
   }
 
-  // One implicit step of m·v̇ = K(r − x) + B(ṙ − v) − b·v + F for both the
-  // translation and the rotation: the linear terms at the new state (stable
-  // for any h), the rendered wrench held from the last frame.
+  // One step of m·v̇ = K(r − x) + B(ṙ − v) − b·v + F, translation and
+  // rotation alike, with the linear terms at the step's midpoint (the
+  // trapezoidal rule): unconditionally stable, and for the spring neither
+  // adding nor removing energy, so all dissipation is the physical damping B
+  // and b (backward Euler would damp numerically and flatter a renderer's
+  // stability). The rendered wrench is held from the last frame.
   void integrate(const Pose& ref, double h, bool released) {
     const HandModel& m = model_;
     const double handM = released ? 0.0 : m.handMass, handB = released ? 0.0 : m.handDamping,
                  handK = released ? 0.0 : m.handStiffness;
-    const double mass = handM + m.deviceMass;
+    const double mass = handM + m.deviceMass, damping = handB + m.deviceDamping;
     const glm::dvec3 refVelocity = (ref.position - previousRef_.position) / h;
-    const glm::dvec3 rhs = mass * velocity_ + h * (handK * (ref.position - pose_.position) + handB * refVelocity + force_);
-    velocity_ = rhs / (mass + h * (handB + m.deviceDamping) + h * h * handK);
-    pose_.position += h * velocity_;
+    const glm::dvec3 refMid = 0.5 * (ref.position + previousRef_.position);
+    const glm::dvec3 rhs = mass * velocity_ + h * (handK * (refMid - pose_.position) + handB * refVelocity + force_) -
+                           (0.25 * h * h * handK + 0.5 * h * damping) * velocity_;
+    const glm::dvec3 v = rhs / (mass + 0.25 * h * h * handK + 0.5 * h * damping);
+    pose_.position += 0.5 * h * (velocity_ + v);
+    velocity_ = v;
 
     const double handI = released ? 0.0 : m.handInertia, handBr = released ? 0.0 : m.handAngularDamping,
                  handKr = released ? 0.0 : m.handAngularStiffness;
-    const double inertia = handI + m.deviceInertia;
-    const glm::dvec3 refOmega = rotationVector(ref.orientation * glm::conjugate(previousRef_.orientation)) / h;
-    const glm::dvec3 error = rotationVector(ref.orientation * glm::conjugate(pose_.orientation));
-    const glm::dvec3 rhsR = inertia * omega_ + h * (handKr * error + handBr * refOmega + torque_);
-    omega_ = rhsR / (inertia + h * (handBr + m.deviceAngularDamping) + h * h * handKr);
-    pose_.orientation = glm::normalize(fromRotationVector(omega_ * h) * pose_.orientation);
+    const double inertia = handI + m.deviceInertia, dampingR = handBr + m.deviceAngularDamping;
+    const glm::dquat refStep = ref.orientation * glm::conjugate(previousRef_.orientation);
+    const glm::dvec3 refOmega = rotationVector(refStep) / h;
+    // The reference halfway through the step, and the error towards it.
+    const glm::dquat refMidQ = fromRotationVector(0.5 * rotationVector(refStep)) * previousRef_.orientation;
+    const glm::dvec3 error = rotationVector(refMidQ * glm::conjugate(pose_.orientation));
+    const glm::dvec3 rhsR = inertia * omega_ + h * (handKr * error + handBr * refOmega + torque_) -
+                            (0.25 * h * h * handKr + 0.5 * h * dampingR) * omega_;
+    const glm::dvec3 w = rhsR / (inertia + 0.25 * h * h * handKr + 0.5 * h * dampingR);
+    pose_.orientation = glm::normalize(fromRotationVector(0.5 * h * (omega_ + w)) * pose_.orientation);
+    omega_ = w;
   }
 
   Trajectory trajectory_;

@@ -4,9 +4,10 @@
 // grip) pulls the handle towards it; the handle and hand masses move under
 // the grip, the device's own damping, and the rendered force and torque,
 // which act back on them one frame late (zero-order hold, as on hardware).
-// The grip and damping are integrated implicitly, so the hand model itself is
-// stable at any rate; the rendered force is explicit, so the renderer's
-// stability is tested as it would be on a real device (docs/algorithms.md).
+// The grip and damping are integrated by the trapezoidal rule, so the hand
+// model is stable at any rate and its spring neither adds nor removes energy;
+// the rendered force is explicit, so the renderer's stability is tested as it
+// would be on a real device (docs/algorithms.md).
 #include "millsim/haptics/HapticsDevice.h"
 
 namespace millsim {
