@@ -2,6 +2,7 @@
 // here (or, for integrators, in a plugin's entry point), never by static
 // initialisers.
 #include "millsim/core/NodeRegistry.h"
+#include "millsim/haptics/BarbicRenderer.h"
 #include "millsim/haptics/LineProxyRenderer.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/haptics/SurfacePointRenderer.h"
@@ -13,7 +14,8 @@ namespace millsim {
 void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
-                            &SurfacePointRenderer::type(), &TrajectoryDevice::type()})
+                            &SurfacePointRenderer::type(), &BarbicRenderer::type(),
+                            &TrajectoryDevice::type()})
     r.add(*t);
 }
 
