@@ -16,6 +16,7 @@
 
 #include "millsim/haptics/BarbicRenderer.h"
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/haptics/ToolSdf.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
@@ -143,5 +144,27 @@ BENCHMARK(BM_ShellUpdateAfterStamp)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond)
     ->Iterations(300);
+
+}  // namespace
+
+namespace {
+
+// The tool distance per query: exact analytic form (0) against the sampled
+// grid at 0.05 mm (1), on points spread over the tool's box.
+void BM_ToolSdf(benchmark::State& state) {
+  const ToolSdf sdf(kTool, 0.05e-3);
+  std::vector<glm::dvec3> q(4096);
+  unsigned seed = 1;
+  auto next = [&] { return (seed = seed * 1664525u + 1013904223u) / 4294967296.0; };
+  for (auto& p : q) p = sdf.boxLo() + (sdf.boxHi() - sdf.boxLo()) * glm::dvec3(next(), next(), next());
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    const glm::dvec3& p = q[i++ & 4095];
+    sum += state.range(0) ? sdf.sampledDistance(p) : sdf.distance(p);
+  }
+  benchmark::DoNotOptimize(sum);
+}
+BENCHMARK(BM_ToolSdf)->ArgName("sampled")->Arg(0)->Arg(1);
 
 }  // namespace
