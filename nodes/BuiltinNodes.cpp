@@ -3,6 +3,7 @@
 // initialisers.
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/haptics/AresDevice.h"
+#include "millsim/haptics/BarbicRenderer.h"
 #include "millsim/haptics/HandDevice.h"
 #include "millsim/haptics/LineProxyRenderer.h"
 #include "millsim/haptics/MillTool.h"
@@ -15,7 +16,7 @@ namespace millsim {
 void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
-                            &SurfacePointRenderer::type(), &TrajectoryDevice::type(),
+                            &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
                             &HandDevice::type(), &AresDevice::type()})
     r.add(*t);
 }

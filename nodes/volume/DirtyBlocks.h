@@ -4,8 +4,10 @@
 // list with capacity for every block, so marking never allocates.
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 #include <openvdb/openvdb.h>
 
@@ -27,6 +29,7 @@ public:
   void markVoxel(int i, int j, int k) {
     const int bx = i >> kLog2, by = j >> kLog2, bz = k >> kLog2;
     if (i < 0 || j < 0 || k < 0 || bx >= blocks_.x || by >= blocks_.y || bz >= blocks_.z) return;
+    voxelLo_ = glm::min(voxelLo_, glm::ivec3(i, j, k)), voxelHi_ = glm::max(voxelHi_, glm::ivec3(i, j, k));
     const std::size_t idx = (std::size_t(bz) * blocks_.y + by) * blocks_.x + bx;
     if (bits_[idx]) return;
     bits_[idx] = true;
@@ -36,6 +39,12 @@ public:
   // Leaf origins marked so far, in the order they were first marked.
   const std::vector<openvdb::Coord>& origins() const { return list_; }
   bool empty() const { return list_.empty(); }
+  // Bounding box (inclusive, voxel indices) of every voxel marked since the
+  // last clear(): far tighter than the blocks, so consumers such as the point
+  // shell can recompute only what a burr stamp touched. dropFront() keeps it
+  // (a superset stays correct). Empty (lo > hi) when nothing is marked.
+  glm::ivec3 voxelLo() const { return voxelLo_; }
+  glm::ivec3 voxelHi() const { return voxelHi_; }
   // Forgets the first n marked blocks, keeping the rest in order (in place).
   void dropFront(std::size_t n) {
     n = std::min(n, list_.size());
@@ -45,6 +54,7 @@ public:
   void clear() {
     for (const auto& c : list_) unmark(c);
     list_.clear();
+    voxelLo_ = glm::ivec3(std::numeric_limits<int>::max()), voxelHi_ = glm::ivec3(std::numeric_limits<int>::min());
   }
 
 private:
@@ -54,6 +64,8 @@ private:
   glm::ivec3 blocks_{0};
   std::vector<bool> bits_;
   std::vector<openvdb::Coord> list_;
+  glm::ivec3 voxelLo_{std::numeric_limits<int>::max()};
+  glm::ivec3 voxelHi_{std::numeric_limits<int>::min()};
 };
 
 }  // namespace millsim

@@ -38,6 +38,9 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
   }
   for (int b = 0; b < int(buckets_.size()); ++b) rebuildBucket(acc, b);
   for (int s = 0; s < int(supers_.size()); ++s) refreshSuper(s);
+  fineScratch_.reserve(kScratchVoxels);
+  coarseScratch_.reserve(kScratchVoxels);
+  merged_.reserve(std::size_t(kBucket * kBucket * kBucket));
 }
 
 // Mean density of the coarse voxel (I, J, K): the s³ fine voxels it covers.
@@ -62,8 +65,6 @@ void PointShell::rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int 
   const int bx = b % bucketDims_.x, by = (b / bucketDims_.x) % bucketDims_.y, bz = b / (bucketDims_.x * bucketDims_.y);
   const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBucket;
   const glm::ivec3 hi = glm::min(lo + kBucket, coarseDims_);
-  // Coarse voxel centre in fine index units, and the coarse spacing in fine units.
-  const double offset = 0.5 * (scale_ - 1);
   for (int K = lo.z; K < hi.z; ++K)
     for (int J = lo.y; J < hi.y; ++J)
       for (int I = lo.x; I < hi.x; ++I) {
@@ -71,27 +72,167 @@ void PointShell::rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int 
         if (v <= iso_) continue;
         const float n[6] = {coarse(acc, I - 1, J, K), coarse(acc, I + 1, J, K), coarse(acc, I, J - 1, K),
                             coarse(acc, I, J + 1, K), coarse(acc, I, J, K - 1), coarse(acc, I, J, K + 1)};
-        bool surface = false;
-        for (float x : n) surface |= x <= iso_;
-        if (!surface) continue;
-        // Outward normal: down the density gradient (central differences; the
-        // voxel size makes it a gradient in metres for anisotropic volumes).
-        const glm::dvec3 h = volume_->voxelSize() * double(scale_);
-        glm::dvec3 g((n[1] - n[0]) / h.x, (n[3] - n[2]) / h.y, (n[5] - n[4]) / h.z);
-        double len = glm::length(g);
-        if (!(len > 0.0)) {
-          // Symmetric neighbourhood (a one-voxel spike): point towards the outside neighbours.
-          g = glm::dvec3(double(n[0] <= iso_) - double(n[1] <= iso_), double(n[2] <= iso_) - double(n[3] <= iso_),
-                         double(n[4] <= iso_) - double(n[5] <= iso_));
-          len = glm::length(g);
-          if (!(len > 0.0)) g = glm::dvec3(0, -1, 0), len = 1.0;
-        }
-        const glm::dvec3 fine = glm::dvec3(I, J, K) * double(scale_) + offset;
-        ShellPoint p{glm::vec3(volume_->indexToLocal(fine)), glm::vec3(-g / len)};
+        ShellPoint p;
+        if (!makePoint(v, n, I, J, K, p)) continue;
         bucket.points.push_back(p);
         bucket.box.add(p.position);
       }
   count_ += bucket.points.size();
+}
+
+bool PointShell::makePoint(float v, const float n[6], int I, int J, int K, ShellPoint& out) const {
+  if (v <= iso_) return false;
+  bool surface = false;
+  for (int i = 0; i < 6; ++i) surface |= n[i] <= iso_;
+  if (!surface) return false;
+  // Outward normal: down the density gradient (central differences; the
+  // voxel size makes it a gradient in metres for anisotropic volumes).
+  const glm::dvec3 h = volume_->voxelSize() * double(scale_);
+  glm::dvec3 g((n[1] - n[0]) / h.x, (n[3] - n[2]) / h.y, (n[5] - n[4]) / h.z);
+  double len = glm::length(g);
+  if (!(len > 0.0)) {
+    // Symmetric neighbourhood (a one-voxel spike): point towards the outside neighbours.
+    g = glm::dvec3(double(n[0] <= iso_) - double(n[1] <= iso_), double(n[2] <= iso_) - double(n[3] <= iso_),
+                   double(n[4] <= iso_) - double(n[5] <= iso_));
+    len = glm::length(g);
+    if (!(len > 0.0)) g = glm::dvec3(0, -1, 0), len = 1.0;
+  }
+  // Coarse voxel centre in fine index units.
+  const glm::dvec3 fine = glm::dvec3(I, J, K) * double(scale_) + 0.5 * (scale_ - 1);
+  out = ShellPoint{glm::vec3(volume_->indexToLocal(fine)), glm::vec3(-g / len)};
+  return true;
+}
+
+glm::ivec3 PointShell::coarseIndexOf(const ShellPoint& p) const {
+  const glm::dvec3 fine = volume_->localToIndex(glm::dvec3(p.position));
+  return glm::ivec3(glm::round((fine - 0.5 * (scale_ - 1)) / double(scale_)));
+}
+
+void PointShell::refreshSuperOfBucket(int b) {
+  const int bx = b % bucketDims_.x, by = (b / bucketDims_.x) % bucketDims_.y, bz = b / (bucketDims_.x * bucketDims_.y);
+  refreshSuper(((bz / kSuper) * superDims_.y + by / kSuper) * superDims_.x + bx / kSuper);
+}
+
+void PointShell::rebuildAll(const VoxelVolume& volume) {
+  auto acc = volume.grid().getConstAccessor();
+  for (int b = 0; b < int(buckets_.size()); ++b) rebuildBucket(acc, b);
+  for (int s = 0; s < int(supers_.size()); ++s) refreshSuper(s);
+}
+
+int PointShell::update(const VoxelVolume& volume, const DirtyBlocks& dirty) {
+  if (dirty.empty()) return 0;
+  int rebuilt = 0;
+  if (updateRegion(volume, dirty.voxelLo(), dirty.voxelHi(), rebuilt)) return rebuilt;
+  return update(volume, dirty.origins());
+}
+
+bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::ivec3 vhi, int& rebuilt) {
+  if (glm::any(glm::greaterThan(vlo, vhi))) return true;  // nothing marked
+  // C: coarse voxels whose value, surface status or normal can have changed
+  // (the changed coarse voxels and their six-neighbours); E: C plus the
+  // neighbours their test reads; F: the fine voxels E averages.
+  const glm::ivec3 cLo = glm::max(vlo / scale_ - 1, glm::ivec3(0));
+  const glm::ivec3 cHi = glm::min(vhi / scale_ + 1, coarseDims_ - 1);
+  if (glm::any(glm::greaterThan(cLo, cHi))) return true;
+  const glm::ivec3 eLo = cLo - 1, eDim = cHi - cLo + 3;
+  const glm::ivec3 fLo = eLo * scale_, fDim = eDim * scale_;
+  const std::size_t fineCount = std::size_t(fDim.x) * fDim.y * fDim.z;
+  if (fineCount > fineScratch_.capacity() || std::size_t(eDim.x) * eDim.y * eDim.z > coarseScratch_.capacity())
+    return false;
+  fineScratch_.resize(fineCount);  // within capacity: no allocation
+  coarseScratch_.resize(std::size_t(eDim.x) * eDim.y * eDim.z);
+
+  // Dense copy of F, leaf by leaf: one tree lookup per 8³ block instead of one per voxel.
+  const auto& tree = volume.grid().tree();
+  using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
+  const glm::ivec3 fHi = fLo + fDim - 1;
+  for (int oz = fLo.z & ~7; oz <= fHi.z; oz += 8)
+    for (int oy = fLo.y & ~7; oy <= fHi.y; oy += 8)
+      for (int ox = fLo.x & ~7; ox <= fHi.x; ox += 8) {
+        const openvdb::Coord origin(ox, oy, oz);
+        const Leaf* leaf = tree.probeConstLeaf(origin);
+        const float tile = leaf ? 0.f : tree.getValue(origin);
+        const glm::ivec3 lo = glm::max(glm::ivec3(ox, oy, oz), fLo), hi = glm::min(glm::ivec3(ox, oy, oz) + 7, fHi);
+        for (int k = lo.z; k <= hi.z; ++k)
+          for (int j = lo.y; j <= hi.y; ++j) {
+            float* row = &fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x - fLo.x];
+            for (int i = lo.x; i <= hi.x; ++i)
+              row[i] = leaf ? leaf->getValue(Leaf::coordToOffset(openvdb::Coord(i, j, k))) : tile;
+          }
+      }
+  auto fine = [&](int i, int j, int k) {
+    return fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x + (i - fLo.x)];
+  };
+  // Coarse values of E, exactly as coarse() computes them (same order of summation).
+  const double inv = double(scale_ * scale_ * scale_);
+  for (int K = eLo.z; K < eLo.z + eDim.z; ++K)
+    for (int J = eLo.y; J < eLo.y + eDim.y; ++J)
+      for (int I = eLo.x; I < eLo.x + eDim.x; ++I) {
+        float v;
+        if (scale_ == 1) {
+          v = fine(I, J, K);
+        } else if (I < 0 || J < 0 || K < 0 || I >= coarseDims_.x || J >= coarseDims_.y || K >= coarseDims_.z) {
+          v = volume_->airValue();
+        } else {
+          double sum = 0.0;
+          for (int k = 0; k < scale_; ++k)
+            for (int j = 0; j < scale_; ++j)
+              for (int i = 0; i < scale_; ++i) sum += fine(I * scale_ + i, J * scale_ + j, K * scale_ + k);
+          v = static_cast<float>(sum / inv);
+        }
+        coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)] = v;
+      }
+  auto cv = [&](int I, int J, int K) {
+    return coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)];
+  };
+
+  // Each bucket overlapping C: keep its points outside C, recompute those in C,
+  // merged in scan order (K, J, I) as a full rebuild would list them.
+  const glm::ivec3 bLo = cLo / kBucket, bHi = cHi / kBucket;
+  for (int bz = bLo.z; bz <= bHi.z; ++bz)
+    for (int by = bLo.y; by <= bHi.y; ++by)
+      for (int bx = bLo.x; bx <= bHi.x; ++bx) {
+        const int b = (bz * bucketDims_.y + by) * bucketDims_.x + bx;
+        Bucket& bucket = buckets_[std::size_t(b)];
+        if (bucket.points.capacity() == 0) continue;  // never held material
+        const glm::ivec3 rLo = glm::max(glm::ivec3(bx, by, bz) * kBucket, cLo);
+        const glm::ivec3 rHi = glm::min(glm::ivec3(bx, by, bz) * kBucket + kBucket - 1, cHi);
+        auto key = [&](const glm::ivec3& c) {
+          return (std::int64_t(c.z) * coarseDims_.y + c.y) * coarseDims_.x + c.x;
+        };
+        merged_.clear();
+        std::size_t old = 0;
+        const std::size_t nOld = bucket.points.size();
+        auto flushOldBefore = [&](std::int64_t k) {
+          for (; old < nOld; ++old) {
+            const glm::ivec3 c = coarseIndexOf(bucket.points[old]);
+            if (key(c) >= k) break;
+            if (glm::all(glm::greaterThanEqual(c, rLo)) && glm::all(glm::lessThanEqual(c, rHi))) continue;  // recomputed
+            merged_.push_back(bucket.points[old]);
+          }
+        };
+        for (int K = rLo.z; K <= rHi.z; ++K)
+          for (int J = rLo.y; J <= rHi.y; ++J)
+            for (int I = rLo.x; I <= rHi.x; ++I) {
+              const float v = cv(I, J, K);
+              if (v <= iso_) continue;
+              const float n[6] = {cv(I - 1, J, K), cv(I + 1, J, K), cv(I, J - 1, K),
+                                  cv(I, J + 1, K), cv(I, J, K - 1), cv(I, J, K + 1)};
+              ShellPoint p;
+              if (!makePoint(v, n, I, J, K, p)) continue;
+              flushOldBefore(key({I, J, K}));
+              merged_.push_back(p);
+            }
+        flushOldBefore(std::numeric_limits<std::int64_t>::max());
+        count_ -= nOld;
+        bucket.points.assign(merged_.begin(), merged_.end());  // within capacity: no allocation
+        count_ += bucket.points.size();
+        bucket.box = Aabb{};
+        for (const ShellPoint& p : bucket.points) bucket.box.add(p.position);
+        refreshSuperOfBucket(b);
+        ++rebuilt;
+      }
+  return true;
 }
 
 void PointShell::refreshSuper(int s) {
@@ -151,6 +292,7 @@ std::size_t PointShell::memoryBytes() const {
   std::size_t bytes = buckets_.capacity() * sizeof(Bucket) + supers_.capacity() * sizeof(Super);
   for (const auto& b : buckets_) bytes += b.points.capacity() * sizeof(ShellPoint);
   for (const auto& s : supers_) bytes += s.buckets.capacity() * sizeof(int);
+  bytes += (fineScratch_.capacity() + coarseScratch_.capacity()) * sizeof(float) + merged_.capacity() * sizeof(ShellPoint);
   return bytes;
 }
 

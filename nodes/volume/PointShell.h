@@ -9,9 +9,11 @@
 // Points are bucketed by blocks of 8³ coarse voxels, and buckets by groups of
 // 4³ (super-buckets), each with a tight bounding box: a box query visits only
 // the super-buckets and buckets whose boxes overlap (the paper's octree). After
-// milling, update() rebuilds only the buckets near the changed voxel blocks, in
-// place: capacity for every bucket that holds material is reserved up front, so
-// an update never allocates.
+// milling, update() recomputes only the coarse voxels a stamp can have
+// affected (the changed voxels' box, widened by the neighbour and normal
+// stencils) from one dense copy of that box, and merges them into the buckets
+// they fall in, in place: capacity for every bucket that holds material and
+// for the scratch copies is reserved up front, so an update never allocates.
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -23,6 +25,7 @@
 #include <glm/vector_relational.hpp>
 #include <openvdb/openvdb.h>
 
+#include "millsim/volume/DirtyBlocks.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
@@ -59,6 +62,38 @@ public:
   // Rebuilds the buckets affected by changes in the given 8³ voxel blocks
   // (leaf origins, as DirtyBlocks reports them). Returns the number of buckets rebuilt.
   int update(const VoxelVolume& volume, const std::vector<openvdb::Coord>& dirtyLeafOrigins);
+  // The fast path: recomputes only the coarse voxels within reach of the
+  // voxels `dirty` marked (its voxel box); falls back to the block path above
+  // when the box is larger than the scratch space reserved. Same result.
+  int update(const VoxelVolume& volume, const DirtyBlocks& dirty);
+  // Rebuilds every bucket (after changes this shell missed). Does not allocate.
+  void rebuildAll(const VoxelVolume& volume);
+
+  // Points in the buckets `overlaps` accepts, without visiting them (for a work budget).
+  template <class Overlaps> std::size_t countCandidates(Overlaps&& overlaps) const {
+    std::size_t n = 0;
+    for (const Super& s : supers_) {
+      if (s.count == 0 || !overlaps(s.box)) continue;
+      for (int b : s.buckets) {
+        const Bucket& bucket = buckets_[std::size_t(b)];
+        if (!bucket.points.empty() && overlaps(bucket.box)) n += bucket.points.size();
+      }
+    }
+    return n;
+  }
+  // Whether any candidate point satisfies `pred` (stops at the first).
+  template <class Overlaps, class Pred> bool anyCandidate(Overlaps&& overlaps, Pred&& pred) const {
+    for (const Super& s : supers_) {
+      if (s.count == 0 || !overlaps(s.box)) continue;
+      for (int b : s.buckets) {
+        const Bucket& bucket = buckets_[std::size_t(b)];
+        if (bucket.points.empty() || !overlaps(bucket.box)) continue;
+        for (const ShellPoint& p : bucket.points)
+          if (pred(p)) return true;
+      }
+    }
+    return false;
+  }
 
   // Visits the points of every bucket whose bounding box `overlaps(Aabb)` accepts:
   // the test is applied first to super-buckets, then to buckets.
@@ -92,8 +127,15 @@ private:
   };
 
   float coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const;
+  // The shell point of coarse voxel (I, J, K) with value v and six neighbours
+  // n (−x, +x, −y, +y, −z, +z), if it is a surface voxel. Shared by both paths
+  // so that an update gives bit-for-bit what a rebuild gives.
+  bool makePoint(float v, const float n[6], int I, int J, int K, ShellPoint& out) const;
+  glm::ivec3 coarseIndexOf(const ShellPoint& p) const;
   void rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b);
   void refreshSuper(int s);
+  void refreshSuperOfBucket(int b);
+  bool updateRegion(const VoxelVolume& volume, glm::ivec3 voxelLo, glm::ivec3 voxelHi, int& rebuilt);
 
   const VoxelVolume* volume_;
   float iso_;
@@ -104,6 +146,10 @@ private:
   std::vector<Bucket> buckets_;
   std::vector<Super> supers_;
   std::size_t count_ = 0;
+  // Scratch for updateRegion: dense fine values, coarse values, a merged bucket.
+  static constexpr std::size_t kScratchVoxels = 64 * 64 * 64;
+  std::vector<float> fineScratch_, coarseScratch_;
+  std::vector<ShellPoint> merged_;
 };
 
 }  // namespace millsim

@@ -87,7 +87,7 @@ TEST(Replay, IsByteIdenticalRunToRun) {
 
 TEST(Replay, EveryRendererReplaysTheSameSceneAndFeelsTheTooth) {
   const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
-  for (const std::string renderer : {"LineProxyRenderer", "SurfacePointRenderer"}) {
+  for (const std::string renderer : {"LineProxyRenderer", "SurfacePointRenderer", "BarbicRenderer"}) {
     const std::string log = replayToString(scene, renderer);
     EXPECT_EQ(log, replayToString(scene, renderer)) << renderer;
     // Some frame has contacts (column 15).
@@ -117,6 +117,11 @@ TEST(Replay, SwappingOnlyTheRendererElementWorks) {
   ASSERT_TRUE(a.ok() && b.ok()) << a.report() << b.report();
   EXPECT_EQ(findDevice(*a.scene)->hapticsRenderer.get()->typeName(), "SurfacePointRenderer");
   EXPECT_EQ(findDevice(*b.scene)->hapticsRenderer.get()->typeName(), "LineProxyRenderer");
+  LoadResult c = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/lessons/barbic.x3d", builtinRegistry());
+  ASSERT_TRUE(c.ok()) << c.report();
+  EXPECT_EQ(findDevice(*c.scene)->hapticsRenderer.get()->typeName(), "BarbicRenderer");
+  // The lesson replays with the renderer its element names.
+  EXPECT_FALSE(replayToString(MILLSIM_SOURCE_DIR "/x3d/lessons/barbic.x3d", "").empty());
 }
 
 TEST(Replay, UnknownRendererAndMissingDeviceAreClearErrors) {

@@ -228,7 +228,10 @@ TEST(PointShell, BoxQueriesVisitOnlyOverlappingBuckets) {
 }
 
 TEST(PointShell, IncrementalUpdateEqualsRebuild) {
-  for (int scale : {1, 2, 3}) {
+  // Both paths: by changed blocks, and the fast one by the changed voxels' box.
+  for (int scale : {1, 2, 3, 4, 5, 6, -1, -2, -3, -6}) {
+    const bool fast = scale < 0;
+    scale = std::abs(scale);
     auto v = ball(64, 22.0);
     PointShell shell(v, 0.5f, scale);
     Miller miller(v, 0.5f);
@@ -237,7 +240,8 @@ TEST(PointShell, IncrementalUpdateEqualsRebuild) {
     for (glm::dvec3 c : {glm::dvec3(22e-3, 0, 0), glm::dvec3(0, 21.5e-3, 0.5e-3), glm::dvec3(16e-3, 0, 0),
                          glm::dvec3(-8e-3, -8e-3, 19e-3)}) {
       miller.stamp(c, 5e-3, dirty);
-      shell.update(v, dirty.origins());
+      if (fast) shell.update(v, dirty);
+      else shell.update(v, dirty.origins());
       dirty.clear();
     }
     PointShell fresh(v, 0.5f, scale);
