@@ -577,12 +577,21 @@ private:
 
 }  // namespace
 
+namespace {
+// Built by push_back rather than a braced list: g++ 12 reports a false
+// -Wmaybe-uninitialized for an initializer_list of Diagnostics.
+LoadResult fileError(const fs::path& file, const char* message) {
+  LoadResult r;
+  r.diagnostics.push_back(Diagnostic{Severity::Error, SourceLocation{file.string(), 0, 0}, message});
+  return r;
+}
+}  // namespace
+
 LoadResult loadSceneFile(const fs::path& file, const NodeRegistry& registry, const LoadOptions& options) {
   Loader loader(registry, options);
   std::error_code ec;
-  if (!fs::exists(file, ec)) return {nullptr, {{Severity::Error, {file.string(), 0, 0}, "no such file"}}};
-  if (!fs::is_regular_file(file, ec))
-    return {nullptr, {{Severity::Error, {file.string(), 0, 0}, "not a regular file"}}};
+  if (!fs::exists(file, ec)) return fileError(file, "no such file");
+  if (!fs::is_regular_file(file, ec)) return fileError(file, "not a regular file");
   std::string text;
   if (!loader.readFile(file, text, {file.string(), 0, 0})) return {nullptr, loader.sink_.take()};
   fs::path canonical = fs::weakly_canonical(file, ec);
