@@ -91,10 +91,11 @@ Reference reference(ReferenceKind kind, const Sdf& f, const ProbePose& pp, const
   Reference ref;
   const glm::dvec3 c = pp.device.position, dir = pp.device.shaftDirection();
   // The burr touching the exact surface on the approach path (drawn tool, coupling).
-  const glm::dvec3 touching = f(c) < tool.tipRadius ? entryAlong(f, pp.start, c, tool.tipRadius) : c;
+  // (Along the path, not by the sign at c: past a thin plate the device is outside again.)
+  const glm::dvec3 touching = entryAlong(f, pp.start, c, tool.tipRadius);
   ref.drawn = touching;
   if (kind == ReferenceKind::Proxy) {
-    const glm::dvec3 proxy = f(c) < 0.0 ? entryAlong(f, pp.start, c, 0.0) : c;
+    const glm::dvec3 proxy = entryAlong(f, pp.start, c, 0.0);
     ref.force = k * (proxy - c);
     // The shaft from the tip proxy: its deepest point is the probe, and its
     // proxy the closest surface point (eq. 7–11 at the exact intersection).

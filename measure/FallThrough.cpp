@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include <glm/geometric.hpp>
@@ -36,6 +37,7 @@ FallThroughResult fallThrough(const RendererSpec& spec, double t, double v, int 
   FallThroughResult r;
   r.renderer = spec.label(), r.thickness = t, r.speed = v, r.phases = phases;
   r.minPeakResist = 1e300;
+  r.lowestProxy = std::numeric_limits<double>::quiet_NaN();
   for (int ph = 0; ph < phases; ++ph) {
     auto algorithm = node->compile(tool, *s.scene);
     const double start = y0 + step * ph / phases;
@@ -61,6 +63,18 @@ FallThroughResult fallThrough(const RendererSpec& spec, double t, double v, int 
         }
       }
       if (y > 0.0) peak = std::max(peak, -along);
+      if (out.hasProxy) {
+        r.lowestProxy = std::isnan(r.lowestProxy) ? out.proxy.y : std::min(r.lowestProxy, out.proxy.y);
+        if (out.proxy.y < 0.0 && held) {
+          held = false;
+          if (r.firstFailure.empty()) {
+            char b[160];
+            std::snprintf(b, sizeof b, "phase %d frame %ld: the proxy crossed the midplane (y = %.4g mm)", ph, frame,
+                          out.proxy.y * 1e3);
+            r.firstFailure = b;
+          }
+        }
+      }
     }
     if (!seen) detected = false, held = false;
     if (held && !(glm::dot(out.force, u) < 0.0)) {

@@ -1,8 +1,9 @@
 #pragma once
 // Fall-through: the tool driven kinematically (the device moves at a fixed
 // speed whatever the force, the worst case) straight through a plate.
-//  - held: after first contact the force never pushes along the motion, and
-//    it still resists at the end, with the burr centre well past the plate —
+//  - held: after first contact the force never pushes along the motion, it
+//    still resists at the end, with the burr centre well past the plate, and a
+//    reported proxy (HapticOutput::proxy) never crosses the plate's midplane —
 //    the renderer remembers the plate (proxy and coupling methods must);
 //  - detected: the first frame with a force pushes back (a penalty method,
 //    which has no memory, at least felt the plate on its near side).
@@ -20,6 +21,7 @@ struct FallThroughResult {
   double thickness = 0.0, speed = 0.0;  // m, m/s
   int phases = 0;
   bool held = true, detected = true;    // at every phase
+  double lowestProxy = 0.0;    // m: the lowest reported proxy height (plate midplane at 0), NaN if none
   double minPeakResist = 0.0;  // N: the smallest (over phases) largest resisting force before the midplane
   std::string firstFailure;    // phase and frame of the first failure, to reproduce
 };

@@ -91,7 +91,7 @@ TEST_P(Stability, ThinPlatesAtUpToOneMetrePerSecond) {
     for (double v : fallThroughSpeeds()) {
       const FallThroughResult r = fallThrough({type, {}}, t, v);
       std::cout << type << " | plate " << t * 1e3 << " mm | " << v << " m/s | held " << r.held << " | detected "
-                << r.detected << " | resist " << r.minPeakResist << " N" << (r.firstFailure.empty() ? "" : " | ")
+                << r.detected << " | resist " << r.minPeakResist << " N | lowest proxy " << r.lowestProxy * 1e3 << " mm" << (r.firstFailure.empty() ? "" : " | ")
                 << r.firstFailure << "\n";
       if (stillSafe && (mustHold(type) ? r.held : r.detected)) {
         safe = v;
