@@ -14,6 +14,7 @@ struct GlobalOptions {
   bool allowPluginPath = false;
 };
 
+void addBenchCommand(CLI::App& app, int& result);
 void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addNodesCommand(CLI::App& app, int& result);
 void addPhantomCommand(CLI::App& app, int& result);

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
                "Let ImportLibrary load libraries by absolute path or with '..' in the path");
 
   int result = kExitOk;
+  addBenchCommand(app, result);
   addCheckCommand(app, global, result);
   addNodesCommand(app, result);
   addPhantomCommand(app, result);

@@ -1,5 +1,7 @@
 #include "millsim/volume/PointShell.h"
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 
 namespace millsim {
@@ -43,17 +45,21 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
   merged_.reserve(std::size_t(kBucket * kBucket * kBucket));
 }
 
-// Mean density of the coarse voxel (I, J, K): the s³ fine voxels it covers.
+// Density of the coarse voxel (I, J, K): the densest of the s³ fine voxels it
+// covers. The maximum, not the mean, so that material thinner than s voxels
+// (a 1-voxel plate averages to a third of its density at s = 3 and vanishes)
+// still yields shell points: a coarse shell may sit up to (s − 1)/2 voxels
+// proud of the surface, but it never lets the tool through material.
 float PointShell::coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const {
   if (scale_ == 1) return acc.getValue(openvdb::Coord(I, J, K));
   if (I < 0 || J < 0 || K < 0 || I >= coarseDims_.x || J >= coarseDims_.y || K >= coarseDims_.z)
     return volume_->airValue();
-  double sum = 0.0;
+  float densest = volume_->airValue();
   for (int k = 0; k < scale_; ++k)
     for (int j = 0; j < scale_; ++j)
       for (int i = 0; i < scale_; ++i)
-        sum += acc.getValue(openvdb::Coord(I * scale_ + i, J * scale_ + j, K * scale_ + k));
-  return static_cast<float>(sum / double(scale_ * scale_ * scale_));
+        densest = std::max(densest, acc.getValue(openvdb::Coord(I * scale_ + i, J * scale_ + j, K * scale_ + k)));
+  return densest;
 }
 
 void PointShell::rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b) {
@@ -130,7 +136,7 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   if (glm::any(glm::greaterThan(vlo, vhi))) return true;  // nothing marked
   // C: coarse voxels whose value, surface status or normal can have changed
   // (the changed coarse voxels and their six-neighbours); E: C plus the
-  // neighbours their test reads; F: the fine voxels E averages.
+  // neighbours their test reads; F: the fine voxels E reads.
   const glm::ivec3 cLo = glm::max(vlo / scale_ - 1, glm::ivec3(0));
   const glm::ivec3 cHi = glm::min(vhi / scale_ + 1, coarseDims_ - 1);
   if (glm::any(glm::greaterThan(cLo, cHi))) return true;
@@ -163,8 +169,7 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   auto fine = [&](int i, int j, int k) {
     return fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x + (i - fLo.x)];
   };
-  // Coarse values of E, exactly as coarse() computes them (same order of summation).
-  const double inv = double(scale_ * scale_ * scale_);
+  // Coarse values of E, exactly as coarse() computes them (the densest fine voxel).
   for (int K = eLo.z; K < eLo.z + eDim.z; ++K)
     for (int J = eLo.y; J < eLo.y + eDim.y; ++J)
       for (int I = eLo.x; I < eLo.x + eDim.x; ++I) {
@@ -174,11 +179,10 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
         } else if (I < 0 || J < 0 || K < 0 || I >= coarseDims_.x || J >= coarseDims_.y || K >= coarseDims_.z) {
           v = volume_->airValue();
         } else {
-          double sum = 0.0;
+          v = volume_->airValue();
           for (int k = 0; k < scale_; ++k)
             for (int j = 0; j < scale_; ++j)
-              for (int i = 0; i < scale_; ++i) sum += fine(I * scale_ + i, J * scale_ + j, K * scale_ + k);
-          v = static_cast<float>(sum / inv);
+              for (int i = 0; i < scale_; ++i) v = std::max(v, fine(I * scale_ + i, J * scale_ + j, K * scale_ + k));
         }
         coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)] = v;
       }

@@ -3,8 +3,9 @@
 // "MPO"): the centres of its surface voxels with outward normals. A surface
 // voxel is inside (density > iso) with at least one of its six neighbours
 // outside. With scale s > 1 (the paper's reduced resolution) the volume is
-// first averaged over s³ blocks and the surface voxels of that coarse field are
-// used, which gives roughly 1/s² as many points.
+// first reduced over s³ blocks (each coarse voxel takes the densest of its
+// fine voxels, so thin material never vanishes) and the surface voxels of that
+// coarse field are used, which gives roughly 1/s² as many points.
 //
 // Points are bucketed by blocks of 8³ coarse voxels, and buckets by groups of
 // 4³ (super-buckets), each with a tight bounding box: a box query visits only

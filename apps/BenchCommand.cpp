@@ -1,0 +1,182 @@
+// millsim bench accuracy | rates: the measurements behind docs/results.md
+// (scripts/bench runs them). Renderers are named by registry type and
+// configured by field name, so a new renderer type needs no change here.
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "Commands.h"
+#include "measure/Accuracy.h"
+#include "measure/Rates.h"
+
+namespace millsim::app {
+
+namespace {
+
+using namespace millsim::measure;
+
+std::string fmt(double v, int precision = 3) {
+  if (!std::isfinite(v)) return "–";
+  std::ostringstream o;
+  o << std::setprecision(precision) << v;
+  return o.str();
+}
+
+std::ofstream openOut(const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  return f;
+}
+
+struct AccuracyArgs {
+  std::vector<std::string> renderers;
+  std::vector<double> voxelMm{0.2, 0.1, 0.05};
+  double sweepVoxelMm = 0.1;
+  bool quick = false;
+  std::string csv, md;
+};
+
+int runAccuracy(const AccuracyArgs& a) {
+  AccuracyConfig cfg;
+  if (a.quick) cfg.depths = 3, cfg.tiltsDeg = {0, 30, 60}, cfg.phases = 1, cfg.settleFrames = 10;
+  std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
+  std::vector<AccuracyRow> rows;
+  std::ostringstream orders;
+  auto progress = [](const AccuracyRow& r) {
+    std::cerr << r.renderer << " " << r.resolution << " h=" << r.h * 1e3 << "mm: force RMS " << fmt(r.forceRms)
+              << ", torque RMS " << fmt(r.torqueRms) << ", p99 " << fmt(r.p99Us) << " us\n";
+  };
+  for (const std::string& type : types) {
+    // Voxel size at the default resolution.
+    std::vector<double> hs, fe, te;
+    for (double mm : a.voxelMm) {
+      auto r = measureAccuracy({type, {}}, mm * 1e-3, cfg);
+      progress(r.back());
+      hs.push_back(mm), fe.push_back(r.back().forceRms), te.push_back(r.back().torqueRms);
+      rows.insert(rows.end(), r.begin(), r.end());
+    }
+    orders << "| " << type << " | voxel size h | " << fmt(convergenceOrder(hs, fe), 2) << " | "
+           << fmt(convergenceOrder(hs, te), 2) << " |\n";
+    // Each resolution field, at one voxel size.
+    auto probe = makeRenderer({type, {}});
+    for (const auto& [field, values] : resolutionSweeps(type)) {
+      if (!probe->field(field)) {
+        std::cerr << type << " has no field '" << field << "': its resolution sweep is skipped\n";
+        continue;
+      }
+      std::vector<double> xs, f2, t2;
+      for (const std::string& v : values) {
+        auto r = measureAccuracy({type, {{field, v}}}, a.sweepVoxelMm * 1e-3, cfg, field + "=" + v);
+        progress(r.back());
+        xs.push_back(std::stod(v)), f2.push_back(r.back().forceRms), t2.push_back(r.back().torqueRms);
+        rows.insert(rows.end(), r.begin(), r.end());
+      }
+      // err ∝ n^(−p): report p (positive = converging).
+      orders << "| " << type << " | " << field << " (h = " << a.sweepVoxelMm << " mm) | "
+             << fmt(-convergenceOrder(xs, f2), 2) << " | " << fmt(-convergenceOrder(xs, t2), 2) << " |\n";
+    }
+  }
+  if (!a.csv.empty()) {
+    auto f = openOut(a.csv);
+    f << accuracyCsvHeader() << "\n";
+    for (const auto& r : rows) f << toCsv(r) << "\n";
+  }
+  std::ostringstream md;
+  md << "| renderer | resolution | h (mm) | poses (counted) | force RMS | force p95 | direction RMS (°) | torque RMS | "
+        "torque p95 | drawn RMS (voxels) | p50 (µs) | p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows)
+    if (r.scene == "all")
+      md << "| " << r.renderer << " | " << r.resolution << " | " << fmt(r.h * 1e3) << " | " << r.poses << " ("
+         << r.counted << ") | " << fmt(r.forceRms) << " | " << fmt(r.forceP95) << " | " << fmt(r.directionRms) << " | "
+         << fmt(r.torqueRms) << " | " << fmt(r.torqueP95) << " | " << fmt(r.drawnRms) << " | " << fmt(r.p50Us)
+         << " | " << fmt(r.p99Us) << " |\n";
+  md << "\nPer scene, default resolution, h = 0.1 mm:\n\n| renderer | scene | poses (counted) | force RMS | force p95 | "
+        "direction RMS (°) | torque RMS | torque p95 | drawn RMS (voxels) |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows)
+    if (r.scene != "all" && r.resolution == "default" && std::abs(r.h - 1e-4) < 1e-9)
+      md << "| " << r.renderer << " | " << r.scene << " | " << r.poses << " (" << r.counted << ") | "
+         << fmt(r.forceRms) << " | " << fmt(r.forceP95) << " | " << fmt(r.directionRms) << " | " << fmt(r.torqueRms)
+         << " | " << fmt(r.torqueP95) << " | " << fmt(r.drawnRms) << " |\n";
+  md << "\nConvergence order p (force and torque RMS; error ∝ h^p for the voxel size, ∝ n^−p for a resolution "
+        "field):\n\n| renderer | swept | p (force) | p (torque) |\n|---|---|---|---|\n"
+     << orders.str();
+  if (!a.md.empty()) openOut(a.md) << md.str();
+  else std::cout << md.str();
+  return kExitOk;
+}
+
+struct RatesArgs {
+  std::string renderer;
+  std::string field;
+  std::vector<std::string> values;
+  long frames = 3000;
+  std::string csv;
+};
+
+int runRates(const RatesArgs& a) {
+  std::ofstream csv;
+  if (!a.csv.empty()) {
+    const bool fresh = !std::ifstream(a.csv).good();
+    csv.open(a.csv, std::ios::app);
+    if (!csv) throw std::runtime_error("cannot write " + a.csv);
+    if (fresh) csv << "renderer,resolution,frames,mean_us,p50_us,p99_us,rate_hz,max_contacts\n";
+  }
+  std::vector<std::string> values = a.values.empty() ? std::vector<std::string>{""} : a.values;
+  for (const std::string& v : values) {
+    RendererSpec spec{a.renderer, {}};
+    std::string label = "default";
+    if (!a.field.empty() && !v.empty()) spec.fields.push_back({a.field, v}), label = a.field + "=" + v;
+    const RateResult r = measureRate(spec, a.frames, label);
+    std::cout << r.renderer << " " << r.resolution << ": mean " << fmt(r.meanUs) << " us, p50 " << fmt(r.p50Us)
+              << " us, p99 " << fmt(r.p99Us) << " us, " << fmt(r.rateHz, 4) << " Hz equivalent, " << r.maxContacts
+              << " contacts\n";
+    if (csv) csv << r.renderer << "," << r.resolution << "," << r.frames << "," << r.meanUs << "," << r.p50Us << ","
+                 << r.p99Us << "," << r.rateHz << "," << r.maxContacts << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, int& result) {
+  auto* bench = app.add_subcommand("bench", "Measure accuracy and frame time of the haptics renderers");
+  bench->require_subcommand(1);
+
+  auto* acc = bench->add_subcommand("accuracy", "Force/torque error against analytic references, and frame time");
+  auto a = std::make_shared<AccuracyArgs>();
+  acc->add_option("--renderer", a->renderers, "Renderer type (repeatable; default: every registered one)");
+  acc->add_option("--voxel-sizes", a->voxelMm, "Voxel sizes h in mm (default 0.2,0.1,0.05)")->delimiter(',');
+  acc->add_option("--sweep-voxel", a->sweepVoxelMm, "Voxel size (mm) of the resolution sweeps (default 0.1)");
+  acc->add_flag("--quick", a->quick, "Fewer poses (3 depths, 3 tilts, 1 phase)");
+  acc->add_option("--csv", a->csv, "Write every row (per scene and 'all') as CSV");
+  acc->add_option("--md", a->md, "Write the Markdown tables here (default: stdout)");
+  acc->callback([a, &result] {
+    try {
+      result = runAccuracy(*a);
+    } catch (const std::exception& e) {
+      std::cerr << "millsim bench accuracy: error: " << e.what() << "\n";
+      result = kExitBadInput;
+    }
+  });
+
+  auto* rates = bench->add_subcommand("rates", "Frame time on the tooth phantom (the paper's §8.1 test)");
+  auto r = std::make_shared<RatesArgs>();
+  rates->add_option("--renderer", r->renderer, "Renderer type")->required();
+  rates->add_option("--field", r->field, "Resolution field to set, e.g. vertexCount or slices");
+  rates->add_option("--values", r->values, "Values of --field, e.g. 51,101,251")->delimiter(',');
+  rates->add_option("--frames", r->frames, "Frames timed per value (default 3000)");
+  rates->add_option("--csv", r->csv, "Append rows to this CSV");
+  rates->callback([r, &result] {
+    try {
+      result = runRates(*r);
+    } catch (const std::exception& e) {
+      std::cerr << "millsim bench rates: error: " << e.what() << "\n";
+      result = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace millsim::app

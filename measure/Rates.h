@@ -1,0 +1,20 @@
+#pragma once
+// The paper's §8.1 test application, per renderer and resolution: the burr
+// pressed 0.3 mm into the tooth phantom's occlusal surface with the shaft
+// leaning 15° and circling once a second (as bench/RendererBench.cpp), and the
+// compute time of each step — frame time and the equivalent haptic rate.
+#include "measure/Renderers.h"
+
+namespace millsim::measure {
+
+struct RateResult {
+  std::string renderer, resolution;
+  long frames = 0;
+  double meanUs = 0, p50Us = 0, p99Us = 0;
+  double rateHz = 0;  // 1 / mean frame time
+  int maxContacts = 0;
+};
+
+RateResult measureRate(const RendererSpec& spec, long frames, const std::string& resolutionLabel);
+
+}  // namespace millsim::measure

@@ -1,0 +1,72 @@
+#include "measure/Renderers.h"
+
+#include <stdexcept>
+
+#include "measure/AnalyticScene.h"
+#include "millsim/core/NodeRegistry.h"
+
+namespace millsim::measure {
+
+namespace {
+const NodeRegistry& registry() {
+  static const NodeRegistry r = builtinRegistry();
+  return r;
+}
+}  // namespace
+
+std::string RendererSpec::label() const {
+  std::string s = type;
+  for (const auto& [name, value] : fields) s += " " + name + "=" + value;
+  return s;
+}
+
+std::vector<std::string> registeredRenderers() {
+  std::vector<std::string> names;
+  for (const NodeType* t : registry().all()) {
+    auto probe = t->create();
+    if (dynamic_cast<HapticsRendererNode*>(probe.get())) names.push_back(t->name);
+  }
+  return names;
+}
+
+bool isRegistered(const std::string& type) {
+  for (const auto& n : registeredRenderers())
+    if (n == type) return true;
+  return false;
+}
+
+std::shared_ptr<HapticsRendererNode> makeRenderer(const RendererSpec& spec) {
+  auto node = std::dynamic_pointer_cast<HapticsRendererNode>(
+      registry().find(spec.type) ? registry().create(spec.type) : nullptr);
+  if (!node) {
+    std::string names;
+    for (const auto& n : registeredRenderers()) names += (names.empty() ? "" : ", ") + n;
+    throw std::runtime_error("unknown renderer type '" + spec.type + "' (registered: " + names + ")");
+  }
+  for (const auto& [name, value] : spec.fields) {
+    Field* f = node->field(name);
+    if (!f) throw std::runtime_error(spec.type + " has no field '" + name + "'");
+    try {
+      f->setFromString(value);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(spec.type + "." + name + " = '" + value + "': " + e.what());
+    }
+  }
+  return node;
+}
+
+ToolGeometry standardTool() { return ToolGeometry{0.5e-3, 0.25e-3, 5e-3}; }
+
+double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h) {
+  auto s = voxelise(halfSpace({-3e-3, -2e-3, -3e-3}, {3e-3, 1e-3, 3e-3}), h);
+  auto algorithm = renderer.compile(tool, *s->scene);
+  const double top = 2.0 * tool.tipRadius + 2.0 * h, step = 0.01 * h;
+  algorithm->reset(Pose{{0.0, top, 0.0}, {1, 0, 0, 0}});
+  for (double y = top; y > -tool.tipRadius; y -= step) {
+    const HapticOutput out = algorithm->step(*s->scene, HapticInput{Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
+    if (glm::length(out.force) > 0.0) return y;
+  }
+  return 0.0;
+}
+
+}  // namespace millsim::measure

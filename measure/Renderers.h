@@ -1,0 +1,39 @@
+#pragma once
+// Renderers by registry name, configured by field name — so every suite works
+// on any HapticsRendererNode, including ones that land later (BarbicRenderer)
+// or come from plugins, without code changes here.
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "millsim/haptics/HapticsRenderer.h"
+
+namespace millsim::measure {
+
+using FieldValues = std::vector<std::pair<std::string, std::string>>;  // field name, X3D value text
+
+struct RendererSpec {
+  std::string type;      // registry name, e.g. "LineProxyRenderer"
+  FieldValues fields;    // overrides of the node's defaults
+  std::string label() const;  // "LineProxyRenderer vertexCount=51"
+};
+
+// The renderer types registered in the builtin registry, in name order.
+std::vector<std::string> registeredRenderers();
+bool isRegistered(const std::string& type);
+
+// A node of `spec.type` with its fields set; throws std::runtime_error naming
+// the unknown type or field, or the value the field refused.
+std::shared_ptr<HapticsRendererNode> makeRenderer(const RendererSpec& spec);
+
+// The tool every suite uses: a 1 mm round burr on a 0.5 mm shaft.
+ToolGeometry standardTool();
+
+// Height of the burr centre above a flat surface at which the renderer first
+// reports a force (0 for a centre-point proxy, about the burr radius for
+// surface points), found by a slow kinematic descent onto a half-space. The
+// suites press "the part each renderer feels" by this offset.
+double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h);
+
+}  // namespace millsim::measure
