@@ -18,5 +18,6 @@ void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addNodesCommand(CLI::App& app, int& result);
 void addPhantomCommand(CLI::App& app, int& result);
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result);
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result);
 
 }  // namespace millsim::app

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   addNodesCommand(app, result);
   addPhantomCommand(app, result);
   addReplayCommand(app, global, result);
+  addRenderCommand(app, global, result);
 
   try {
     app.parse(argc, argv);
