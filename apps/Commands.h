@@ -19,6 +19,7 @@ void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addNodesCommand(CLI::App& app, int& result);
 void addPhantomCommand(CLI::App& app, int& result);
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result);
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result);
 
 }  // namespace millsim::app

@@ -12,8 +12,11 @@
 #include <iostream>
 #include <optional>
 #include <thread>
+#include <tuple>
 
 #include "Commands.h"
+#include "ImageArgs.h"
+#include "RunGraphics.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/haptics/FrameLog.h"
 #include "millsim/haptics/HapticsDevice.h"
@@ -53,7 +56,7 @@ void printSummary(std::ostream& os, const LoopStats& s, const std::string& rende
 void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
   struct Args {
-    std::string scene, log, renderer, trajectory;
+    std::string scene, log, renderer, trajectory, screenshot, size = "512x512";
     double duration = 0.0;
     bool noGraphics = false;
   };
@@ -66,6 +69,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("--renderer", args->renderer, "Use a default renderer of this type instead of the scene's");
   cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV for a simulated device instead of its url");
   cmd->add_flag("--no-graphics", args->noGraphics, "Run without a graphics thread (no GL context, no meshes)");
+  cmd->add_option("--screenshot", args->screenshot, "PNG of the last graphics frame, written at the end");
+  cmd->add_option("--size", args->size, "Graphics frame size WIDTHxHEIGHT (default 512x512)");
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
@@ -78,7 +83,15 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     std::unique_ptr<HapticLoop> loop;
     CompiledRun run;
     double duration = 0.0;
+    RunGraphicsOptions graphicsOptions;
     try {
+      if (args->noGraphics && !args->screenshot.empty())
+        throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
+      if (!args->noGraphics) {
+        std::tie(graphicsOptions.width, graphicsOptions.height) = parseSize(args->size);
+        if (!args->screenshot.empty()) checkWritable(args->screenshot, "--screenshot");
+        graphicsOptions.screenshot = args->screenshot;
+      }
       run = compileRun(*r.scene, args->renderer);
       std::optional<Trajectory> trajectory;
       if (!args->trajectory.empty()) trajectory = Trajectory::load(args->trajectory);
@@ -104,6 +117,21 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         run.device->typeName() + (run.device->defName().empty() ? "" : " '" + run.device->defName() + "'");
     if (std::isinf(duration)) std::cout << "running " << deviceName << " until Ctrl-C\n" << std::flush;
 
+    // Graphics first: its context and meshes are ready (or it failed, exit 2)
+    // before the first haptic frame, and the scene is not touched by this
+    // thread until then.
+    std::unique_ptr<RunGraphics> graphics;
+    if (!args->noGraphics) {
+      try {
+        graphics = std::make_unique<RunGraphics>(*r.scene, *run.scene, *loop, run.tool, graphicsOptions);
+        graphics->start();
+      } catch (const std::exception& e) {
+        std::cerr << "millsim run: error: graphics: " << e.what() << " (run with --no-graphics to go without)\n";
+        result = kExitBadInput;
+        return;
+      }
+    }
+
     gInterrupted.store(false);
     auto previousInt = std::signal(SIGINT, onInterrupt);
     auto previousTerm = std::signal(SIGTERM, onInterrupt);
@@ -117,6 +145,15 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     loop->join();
     writer.drain(*loop);
+    RunGraphicsStats graphicsStats;
+    std::string graphicsError;
+    if (graphics) {
+      try {
+        graphicsStats = graphics->stop();
+      } catch (const std::exception& e) {
+        graphicsError = e.what();
+      }
+    }
     std::signal(SIGINT, previousInt);
     std::signal(SIGTERM, previousTerm);
     if (log.is_open()) {
@@ -133,6 +170,20 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       if (v.node) v.node->removedVolume.set(float(v.miller.totalRemoved()));
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
+    if (graphics) {
+      std::cout << std::fixed << std::setprecision(1) << "  graphics: " << graphicsStats.frames << " frames at "
+                << graphicsOptions.width << "x" << graphicsOptions.height << ", mean " << graphicsStats.meanMs
+                << " ms, p95 " << graphicsStats.p95Ms << " ms, with re-meshing " << graphicsStats.meanUpdateMs
+                << " ms (" << graphicsStats.updateFrames << " frames); first mesh " << graphicsStats.meshSeconds * 1e3
+                << " ms; " << graphicsStats.gl << "\n";
+      std::cout.unsetf(std::ios::fixed);
+      if (!args->screenshot.empty() && graphicsError.empty()) std::cout << "  screenshot: " << args->screenshot << "\n";
+    }
+    if (!graphicsError.empty()) {
+      std::cerr << "millsim run: error: " << graphicsError << "\n";
+      result = kExitFailure;
+      return;
+    }
     if (!loop->failure().empty()) {
       // The loop has already zeroed the output and released the device.
       std::cerr << "millsim run: error: " << loop->failure()

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   addNodesCommand(app, result);
   addPhantomCommand(app, result);
   addReplayCommand(app, global, result);
+  addRenderCommand(app, global, result);
   addRunCommand(app, global, result);
 
   try {

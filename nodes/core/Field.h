@@ -198,6 +198,7 @@ using SFString = SField<std::string>;
 using SFVec2f = SField<glm::vec2>;
 using SFVec3f = SField<glm::vec3>;
 using SFVec3d = SField<glm::dvec3>;
+using SFVec4f = SField<glm::vec4>;
 using SFRotation = SField<Rotation>;
 using SFColor = SField<Color>;
 using MFBool = MField<bool>;
@@ -209,6 +210,7 @@ using MFString = MField<std::string>;
 using MFVec2f = MField<glm::vec2>;
 using MFVec3f = MField<glm::vec3>;
 using MFVec3d = MField<glm::dvec3>;
+using MFVec4f = MField<glm::vec4>;
 using MFRotation = MField<Rotation>;
 using MFColor = MField<Color>;
 

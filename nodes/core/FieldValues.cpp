@@ -9,10 +9,11 @@
 namespace millsim {
 
 std::string_view fieldTypeName(FieldType t) {
-  static constexpr std::array<std::string_view, 24> names = {
+  static constexpr std::array<std::string_view, 26> names = {
       "SFBool", "SFInt32", "SFFloat", "SFDouble", "SFTime", "SFString", "SFVec2f", "SFVec3f",
       "SFVec3d", "SFRotation", "SFColor", "SFNode", "MFBool", "MFInt32", "MFFloat", "MFDouble",
-      "MFTime", "MFString", "MFVec2f", "MFVec3f", "MFVec3d", "MFRotation", "MFColor", "MFNode"};
+      "MFTime", "MFString", "MFVec2f", "MFVec3f", "MFVec3d", "MFRotation", "MFColor", "MFNode",
+      "SFVec4f", "MFVec4f"};
   return names.at(static_cast<std::size_t>(t));
 }
 
@@ -155,6 +156,12 @@ glm::vec3 X3DValue<glm::vec3>::read(ValueLexer& lx) {
   float x = readReal<float>(lx, what), y = readReal<float>(lx, what), z = readReal<float>(lx, what);
   return {x, y, z};
 }
+glm::vec4 X3DValue<glm::vec4>::read(ValueLexer& lx) {
+  const char* what = "4 numbers (x y z w)";
+  float x = readReal<float>(lx, what), y = readReal<float>(lx, what), z = readReal<float>(lx, what),
+        w = readReal<float>(lx, what);
+  return {x, y, z, w};
+}
 glm::dvec3 X3DValue<glm::dvec3>::read(ValueLexer& lx) {
   const char* what = "3 numbers (x y z)";
   double x = readReal<double>(lx, what), y = readReal<double>(lx, what), z = readReal<double>(lx, what);
@@ -203,6 +210,9 @@ void X3DValue<glm::vec2>::write(const glm::vec2& v, std::string& out) {
 }
 void X3DValue<glm::vec3>::write(const glm::vec3& v, std::string& out) {
   out += formatNumber(v.x) + ' ' + formatNumber(v.y) + ' ' + formatNumber(v.z);
+}
+void X3DValue<glm::vec4>::write(const glm::vec4& v, std::string& out) {
+  out += formatNumber(v.x) + ' ' + formatNumber(v.y) + ' ' + formatNumber(v.z) + ' ' + formatNumber(v.w);
 }
 void X3DValue<glm::dvec3>::write(const glm::dvec3& v, std::string& out) {
   out += formatNumber(v.x) + ' ' + formatNumber(v.y) + ' ' + formatNumber(v.z);

@@ -13,12 +13,14 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace millsim {
 
 enum class FieldType : std::uint8_t {
   SFBool, SFInt32, SFFloat, SFDouble, SFTime, SFString, SFVec2f, SFVec3f, SFVec3d, SFRotation, SFColor, SFNode,
   MFBool, MFInt32, MFFloat, MFDouble, MFTime, MFString, MFVec2f, MFVec3f, MFVec3d, MFRotation, MFColor, MFNode,
+  SFVec4f, MFVec4f,  // appended so that the values above keep their numbers
 };
 std::string_view fieldTypeName(FieldType t);
 
@@ -148,6 +150,12 @@ template <> struct X3DValue<glm::dvec3> {
   static glm::dvec3 read(ValueLexer& lx);
   static void write(const glm::dvec3& v, std::string& out);
   template <class F> static void numbers(const glm::dvec3& v, F&& f) { f(v.x), f(v.y), f(v.z); }
+};
+template <> struct X3DValue<glm::vec4> {
+  static constexpr FieldType sf = FieldType::SFVec4f, mf = FieldType::MFVec4f;
+  static glm::vec4 read(ValueLexer& lx);
+  static void write(const glm::vec4& v, std::string& out);
+  template <class F> static void numbers(const glm::vec4& v, F&& f) { f(v.x), f(v.y), f(v.z), f(v.w); }
 };
 template <> struct X3DValue<Rotation> {
   static constexpr FieldType sf = FieldType::SFRotation, mf = FieldType::MFRotation;

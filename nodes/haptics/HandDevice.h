@@ -54,6 +54,7 @@ public:
 
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
   bool followsTrajectory() const override { return true; }
+  std::shared_ptr<const Trajectory> trajectory() const override { return trajectory_; }
   void initialize(DiagnosticSink& sink) override;
 
   HandModel model() const;

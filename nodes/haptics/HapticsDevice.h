@@ -64,6 +64,9 @@ public:
   // HandDevice): replay hands them its trajectory. A replay of a hardware
   // device plays the trajectory open loop instead.
   virtual bool followsTrajectory() const { return false; }
+  // The trajectory a simulated device loaded from its url (null for hardware
+  // or an empty url): what replay and render follow by default.
+  virtual std::shared_ptr<const Trajectory> trajectory() const { return nullptr; }
   void initialize(DiagnosticSink& sink) override;
 };
 

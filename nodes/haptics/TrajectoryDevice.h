@@ -29,7 +29,7 @@ public:
   void initialize(DiagnosticSink& sink) override;
 
   // The trajectory loaded from `url` at initialize(), or null if url is empty.
-  const std::shared_ptr<const Trajectory>& trajectory() const { return trajectory_; }
+  std::shared_ptr<const Trajectory> trajectory() const override { return trajectory_; }
 
 private:
   std::shared_ptr<const Trajectory> trajectory_;

@@ -3,6 +3,7 @@
 #include "millsim/std/Appearance.h"
 #include "millsim/std/Background.h"
 #include "millsim/std/Box.h"
+#include "millsim/std/ClipPlane.h"
 #include "millsim/std/Cylinder.h"
 #include "millsim/std/Group.h"
 #include "millsim/std/ImportLibrary.h"
@@ -18,7 +19,7 @@
 namespace millsim {
 
 void registerStandardNodes(NodeRegistry& r) {
-  for (const NodeType* t : {&Appearance::type(), &Background::type(), &Box::type(), &Cylinder::type(),
+  for (const NodeType* t : {&Appearance::type(), &Background::type(), &Box::type(), &ClipPlane::type(), &Cylinder::type(),
                             &Group::type(), &ImportLibrary::type(), &Inline::type(), &Material::type(),
                             &NavigationInfo::type(), &Shape::type(), &Sphere::type(), &Transform::type(),
                             &Viewpoint::type(), &WorldInfo::type()})

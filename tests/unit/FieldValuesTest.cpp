@@ -14,8 +14,8 @@ namespace {
 class AllTypes : public Node {
 public:
   const NodeType& nodeType() const override {
-    static const NodeType t = makeNodeType<AllTypes>("AllTypes", "children", "Test", "Every field type.");
-    return t;
+    static const NodeType type = makeNodeType<AllTypes>("AllTypes", "children", "Test", "Every field type.");
+    return type;
   }
   SFBool b{this, "b", Access::InputOutput, false, ""};
   SFInt32 i{this, "i", Access::InputOutput, 0, ""};

@@ -1,0 +1,91 @@
+// millsim render SCENE.x3d --out SHOT.png: replays the device's trajectory up
+// to a time (milling included) and draws the scene offscreen to a PNG.
+#include <unistd.h>
+
+#include <charconv>
+#include <filesystem>
+#include <iostream>
+
+#include "Commands.h"
+#include "ImageArgs.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/graphics/GlContext.h"
+#include "millsim/graphics/GraphicsError.h"
+#include "millsim/graphics/GraphicsModule.h"
+#include "millsim/graphics/SceneRenderer.h"
+#include "millsim/haptics/HapticsDevice.h"
+#include "millsim/haptics/Replay.h"
+#include "millsim/haptics/TrajectoryDevice.h"
+#include "millsim/std/Viewpoint.h"
+#include "millsim/x3d/X3DLoader.h"
+
+namespace millsim::app {
+
+
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
+  auto* cmd = app.add_subcommand("render", "Draw the scene offscreen (OSMesa) to a PNG, after replaying its trajectory");
+  struct Args {
+    std::string scene, out, size = "512x512", trajectory, viewpoint;
+    double at = std::numeric_limits<double>::infinity();
+    ReplayOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("scene", args->scene, "X3D scene file")->required();
+  cmd->add_option("--out", args->out, "PNG file to write")->required();
+  cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default 512x512)");
+  cmd->add_option("--trajectory", args->trajectory,
+                  "Trajectory CSV to replay (default: the scene device's url, if any)");
+  cmd->add_option("--at", args->at, "Trajectory time to stop at, in seconds (default: its end)");
+  cmd->add_option("--renderer", args->options.renderer, "Use a default haptics renderer of this type");
+  cmd->add_option("--viewpoint", args->viewpoint, "DEF name of the Viewpoint to look through (default: the first)");
+  cmd->callback([args, &global, &result] {
+    result = kExitBadInput;
+    try {
+      const auto [width, height] = parseSize(args->size);
+      checkWritable(args->out, "--out");
+      const GraphicsModule& graphics = loadGraphicsModule();  // before the slow part: is OSMesa there?
+
+      LoadOptions lo;
+      lo.plugins.allowAnyPath = global.allowPluginPath;
+      LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
+      std::cerr << r.report();
+      if (!r.ok()) return;
+      if (!args->viewpoint.empty() && !dynamic_cast<const Viewpoint*>(r.scene->def(args->viewpoint).get()))
+        throw std::invalid_argument("--viewpoint: the scene has no Viewpoint with DEF name '" + args->viewpoint + "'");
+
+      // The tool is drawn where the renderer's last frame put it.
+      std::optional<ToolView> tool;
+      std::shared_ptr<const Trajectory> trajectory;
+      if (!args->trajectory.empty())
+        trajectory = std::make_shared<const Trajectory>(Trajectory::load(args->trajectory));
+      else if (HapticsDevice* device = findDevice(*r.scene))
+        trajectory = device->trajectory();
+      if (trajectory) {
+        args->options.until = args->at;
+        const ReplaySummary s = replay(*r.scene, *trajectory, nullptr, args->options);
+        HapticsDevice* device = findDevice(*r.scene);
+        const ToolGeometry geometry = device && device->tool.get() ? device->tool.get()->geometry() : ToolGeometry{};
+        tool = toolView(geometry, s.last);
+        std::cout << "replayed " << s.frames << " frames with " << s.rendererName << ", removed "
+                  << s.removedVolume * 1e9 << " mm³\n";
+      } else if (std::isfinite(args->at)) {
+        throw std::invalid_argument("--at needs a trajectory: pass --trajectory or give the scene's device a url");
+      }
+
+      RendererOptions ro;
+      ro.width = width;
+      ro.height = height;
+      ro.viewpoint = args->viewpoint;
+      auto renderer = graphics.createRenderer(*r.scene, ro);
+      renderer->render(tool);
+      graphics.writePng(renderer->readPixels(), args->out);
+      std::cout << "wrote " << args->out << " (" << width << "x" << height << ", "
+                << renderer->stats().triangles << " triangles)\n";
+      result = kExitOk;
+    } catch (const std::exception& e) {
+      std::cerr << "millsim render: error: " << e.what() << "\n";
+    }
+  });
+}
+
+}  // namespace millsim::app

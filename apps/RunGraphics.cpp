@@ -1,0 +1,115 @@
+#include "RunGraphics.h"
+
+#include <chrono>
+
+#include "millsim/graphics/FrameTimer.h"
+#include "millsim/graphics/GraphicsError.h"
+#include "millsim/graphics/GraphicsModule.h"
+#include "millsim/graphics/SceneRenderer.h"
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/BlockChannel.h"
+
+namespace millsim::app {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+// Blocks the ring holds per volume: a burr stamp changes at most a few dozen
+// 8³ blocks, and the graphics thread drains every ~33 ms (33 frames); when it
+// is full the haptic side keeps the rest pending and retries (BlockChannel.h).
+constexpr std::size_t kChannelBlocks = 2048;
+}  // namespace
+
+RunGraphics::RunGraphics(const Scene& scene, HapticScene& haptic, HapticLoop& loop, const ToolGeometry& tool,
+                         const RunGraphicsOptions& options)
+    : scene_(scene), haptic_(haptic), loop_(loop), tool_(tool), options_(options) {}
+
+RunGraphics::~RunGraphics() {
+  stop_.store(true);
+  if (thread_.joinable()) thread_.join();
+}
+
+void RunGraphics::start() {
+  const GraphicsModule& graphics = loadGraphicsModule();  // fails fast without OSMesa
+  (void)graphics;
+  for (std::size_t i = 0; i < haptic_.volumeCount(); ++i) {
+    replicas_.push_back(std::make_unique<VolumeReplica>(*haptic_.volume(i).voxels));
+    channels_.push_back(std::make_unique<BlockChannel>(kChannelBlocks));
+    loop_.publishBlocks(i, *channels_.back());
+  }
+  thread_ = std::thread([this] { run(); });
+  while (state_.load(std::memory_order_acquire) == 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  if (state_.load() == 2) {
+    thread_.join();
+    throw GraphicsError(error_);
+  }
+}
+
+void RunGraphics::run() {
+  std::unique_ptr<SceneRenderer> renderer;
+  try {
+    const GraphicsModule& graphics = loadGraphicsModule();
+    RendererOptions ro;
+    ro.width = options_.width;
+    ro.height = options_.height;
+    for (const auto& r : replicas_) ro.voxels.push_back(&r->volume());
+    const auto t0 = Clock::now();
+    renderer = graphics.createRenderer(scene_, ro);
+    stats_.meshSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    stats_.gl = renderer->glDescription();
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    state_.store(2, std::memory_order_release);
+    return;
+  }
+  state_.store(1, std::memory_order_release);
+
+  FrameTimer all, updates;
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.rate));
+  auto next = Clock::now();
+  auto frame = [&] {
+    const auto t0 = Clock::now();
+    bool changed = false;
+    for (std::size_t i = 0; i < replicas_.size(); ++i) {
+      const auto& blocks = replicas_[i]->apply(*channels_[i]);
+      if (!blocks.empty()) {
+        renderer->volumeChanged(i, blocks);
+        changed = true;
+      }
+    }
+    const FrameRecord& f = loop_.newest().read();
+    renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(tool_, f.out)) : std::nullopt);
+    renderer->readPixels();  // finish the frame, as a display copy would
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    all.add(s);
+    if (changed) updates.add(s);
+  };
+  while (!stop_.load(std::memory_order_acquire)) {
+    frame();
+    next += period;
+    const auto now = Clock::now();
+    if (next < now) next = now;  // behind: draw again at once, never queue frames
+    std::this_thread::sleep_until(next);
+  }
+  frame();  // the final state, after the haptic loop ended
+  if (!options_.screenshot.empty()) {
+    try {
+      loadGraphicsModule().writePng(renderer->readPixels(), options_.screenshot);
+    } catch (const std::exception& e) {
+      error_ = e.what();
+    }
+  }
+  stats_.frames = long(all.count());
+  stats_.meanMs = all.mean() * 1e3;
+  stats_.p95Ms = all.p95() * 1e3;
+  stats_.updateFrames = long(updates.count());
+  stats_.meanUpdateMs = updates.mean() * 1e3;
+}
+
+RunGraphicsStats RunGraphics::stop() {
+  stop_.store(true, std::memory_order_release);
+  if (thread_.joinable()) thread_.join();
+  if (!error_.empty()) throw GraphicsError(error_);
+  return stats_;
+}
+
+}  // namespace millsim::app

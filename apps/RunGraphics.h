@@ -1,0 +1,72 @@
+#pragma once
+// The graphics thread of `millsim run`: its own OSMesa context, its own copy
+// of the voxels (one VolumeReplica per volume, fed by the haptic thread's
+// BlockChannels), drawing the newest haptic frame at its own rate. The haptic
+// thread never waits for it: it only pushes blocks into fixed rings and
+// publishes frames into a triple buffer (HapticLoop.h).
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "millsim/haptics/HapticLoop.h"
+#include "millsim/haptics/MillTool.h"
+
+namespace millsim {
+class BlockChannel;
+class HapticScene;
+class Scene;
+class VolumeReplica;
+}  // namespace millsim
+
+namespace millsim::app {
+
+struct RunGraphicsOptions {
+  int width = 512, height = 512;
+  double rate = 30.0;                 // frames per second to aim for
+  std::filesystem::path screenshot;   // written after the last frame if not empty
+};
+
+struct RunGraphicsStats {
+  long frames = 0;
+  double meshSeconds = 0.0;                // building every volume's mesh at start
+  double meanMs = 0.0, p95Ms = 0.0;        // all frames
+  double meanUpdateMs = 0.0;               // frames that re-meshed milled blocks
+  long updateFrames = 0;
+  std::string gl;                          // GL version and renderer
+};
+
+class RunGraphics {
+public:
+  RunGraphics(const Scene& scene, HapticScene& haptic, HapticLoop& loop, const ToolGeometry& tool,
+              const RunGraphicsOptions& options);
+  ~RunGraphics();
+
+  // Scene thread, before the haptic loop starts: copies the voxels, connects
+  // the block channels, starts the thread and waits until its context and
+  // meshes are ready. Throws GraphicsError (no OSMesa, bad size) if not.
+  void start();
+  // Scene thread, after the haptic loop ended: draws the final frame, writes
+  // the screenshot and joins. Throws GraphicsError if the screenshot fails.
+  RunGraphicsStats stop();
+
+private:
+  void run();
+
+  const Scene& scene_;
+  HapticScene& haptic_;
+  HapticLoop& loop_;
+  ToolGeometry tool_;
+  RunGraphicsOptions options_;
+  std::vector<std::unique_ptr<BlockChannel>> channels_;
+  std::vector<std::unique_ptr<VolumeReplica>> replicas_;
+  std::thread thread_;
+  std::atomic<int> state_{0};  // 0 starting, 1 ready, 2 failed
+  std::atomic<bool> stop_{false};
+  std::string error_;
+  RunGraphicsStats stats_;
+};
+
+}  // namespace millsim::app

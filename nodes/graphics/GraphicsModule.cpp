@@ -1,0 +1,20 @@
+// The table loadGraphicsModule() finds in libmillsim_graphics.
+#include "millsim/graphics/GraphicsModule.h"
+
+#include "millsim/graphics/SceneRenderer.h"
+
+namespace {
+
+std::unique_ptr<millsim::SceneRenderer> create(const millsim::Scene& scene, const millsim::RendererOptions& options) {
+  return millsim::createSceneRenderer(scene, options);
+}
+
+void png(const millsim::Image& image, const std::filesystem::path& path) { millsim::writePng(image, path); }
+
+const millsim::GraphicsModule kModule{millsim::kGraphicsAbiVersion, &create, &png};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const millsim::GraphicsModule* millsim_graphics_module() {
+  return &kModule;
+}

@@ -1,0 +1,45 @@
+#pragma once
+// VolumeMesh: the iso-surface of one voxel volume on the GPU. Meshes with
+// IsoSurfaceMesher (16³-cell chunks) and keeps one GlMesh per chunk, so that
+// after milling only the chunks the changed blocks touch are re-extracted and
+// re-uploaded. Vertex colours come from the density just inside the surface,
+// so enamel, dentin and whatever a cut exposes look different. Internal to
+// the graphics library; every call needs the renderer's GL context current.
+#include <map>
+#include <vector>
+
+#include "millsim/graphics/GlMesh.h"
+#include "millsim/volume/IsoSurface.h"
+
+namespace millsim {
+
+// The colour of tissue of a given density (Hounsfield-like units): dentin
+// (~1600) ivory-yellow, enamel (~2800) bluish white, softer tissue towards
+// a pale brown.
+glm::vec3 densityColour(float density, float isoValue);
+
+class VolumeMesh {
+public:
+  // Keeps a reference to `voxels`, which must outlive this and must not be
+  // written while build() or update() run.
+  VolumeMesh(const VoxelVolume& voxels, float isoValue);
+
+  void build();                                             // everything afresh
+  void update(const std::vector<openvdb::Coord>& blocks);   // after these 8³ blocks changed
+  void draw() const;
+
+  std::size_t triangles() const { return mesher_.triangleCount(); }
+  std::size_t chunks() const { return gpu_.size(); }
+  std::size_t uploads() const { return uploads_; }  // chunk uploads since construction
+
+private:
+  void upload(const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk);
+
+  const VoxelVolume& voxels_;
+  IsoSurfaceMesher mesher_;
+  std::map<IsoSurfaceMesher::ChunkKey, GlMesh, IsoSurfaceMesher::KeyLess> gpu_;
+  std::vector<Vertex> scratch_;
+  std::size_t uploads_ = 0;
+};
+
+}  // namespace millsim

@@ -1,0 +1,143 @@
+// The graphics building blocks: context and PNG errors, incremental remeshing
+// against a full rebuild, ClipPlane scoping.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "../unit/TestFiles.h"
+#include "ImageCompare.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/graphics/GlContext.h"
+#include "millsim/graphics/GraphicsError.h"
+#include "millsim/graphics/SceneRenderer.h"
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/x3d/X3DLoader.h"
+
+using namespace millsim;
+using namespace millsim::test;
+
+namespace {
+
+RendererOptions sized(int side) {
+  RendererOptions o;
+  o.width = o.height = side;
+  return o;
+}
+
+std::string errorOf(int w, int h) {
+  try {
+    GlContext c(w, h);
+  } catch (const GraphicsError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(GlContext, RefusesBadSizesNamingThem) {
+  EXPECT_NE(errorOf(0, 512).find("0x512"), std::string::npos) << errorOf(0, 512);
+  EXPECT_NE(errorOf(512, -3).find("512x-3"), std::string::npos);
+  EXPECT_NE(errorOf(9000, 16).find("9000x16"), std::string::npos);
+}
+
+TEST(GlContext, IsCoreProfileOnOSMesa) {
+  GlContext c(16, 16);
+  EXPECT_NE(c.description().find("Core"), std::string::npos) << c.description();
+}
+
+TEST(WritePng, UnwritablePathIsAClearError) {
+  Image img{2, 2, std::vector<std::uint8_t>(16, 255)};
+  try {
+    writePng(img, "/nonexistent-folder/shot.png");
+    FAIL() << "no error";
+  } catch (const GraphicsError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-folder/shot.png"), std::string::npos) << e.what();
+  }
+}
+
+TEST(WritePng, RoundTrips) {
+  ScratchDir dir;
+  Image img{3, 2, {}};
+  for (int i = 0; i < 24; ++i) img.rgba.push_back(std::uint8_t(i * 10));
+  writePng(img, dir.path() / "x.png");
+  const Image back = readPng(dir.path() / "x.png");
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.rgba, img.rgba);
+}
+
+// A small phantom seen from above, so that a stamp on its crown is in view.
+const char* kSmallTooth = R"(
+  <Viewpoint position="0 0.03 0" orientation="1 0 0 -1.5707963" fieldOfView="0.5"/>
+  <VolumeObject url='"phantom:tooth?size=128,128,88"' isoValue="700"/>)";
+
+TEST(SceneRenderer, IncrementalUpdateDrawsWhatAFullRebuildDraws) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("t.x3d", x3d(kSmallTooth)), builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto incremental = createSceneRenderer(*r.scene, sized(128));
+  auto full = createSceneRenderer(*r.scene, sized(128));
+  const RendererStats start = incremental->stats();
+  ASSERT_GT(start.triangles, 1000u);
+
+  HapticScene hs(*r.scene);
+  // Down from the top onto the crown until the burr bites.
+  glm::dvec3 p(0.0, hs.volume(0).voxels->halfSize().y, 0.0);
+  while (!hs.inside(p) && p.y > 0.0) p.y -= 1e-4;
+  ASSERT_GT(hs.mill(p, 0.6e-3), 0.0);
+  const std::vector<openvdb::Coord> blocks = hs.volume(0).changed.origins();
+  incremental->volumeChanged(0, blocks);
+  full->rebuildVolume(0);
+
+  const RendererStats after = incremental->stats();
+  EXPECT_GT(after.chunkUploads, start.chunkUploads);
+  EXPECT_LT(after.chunkUploads - start.chunkUploads, start.chunks / 2) << "an update re-uploads only touched chunks";
+  EXPECT_EQ(after.triangles, full->stats().triangles);
+  incremental->render(std::nullopt);
+  full->render(std::nullopt);
+  EXPECT_EQ(incremental->readPixels().rgba, full->readPixels().rgba);
+}
+
+TEST(SceneRenderer, ClipPlaneCutsItsSiblingsOnly) {
+  // Two boxes side by side; the ClipPlane inside the left Transform keeps y <= 0
+  // of the left box only. Seen from +Z.
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("c.x3d", x3d(R"(
+    <Viewpoint position="0 0 5" fieldOfView="0.8"/>
+    <Background skyColor="0 0 0"/>
+    <Transform translation="-0.6 0 0">
+      <ClipPlane plane="0 -1 0 0"/>
+      <Shape><Appearance><Material diffuseColor="1 0 0"/></Appearance><Box size="1 1 1"/></Shape>
+    </Transform>
+    <Transform translation="0.6 0 0">
+      <Shape><Appearance><Material diffuseColor="0 1 0"/></Appearance><Box size="1 1 1"/></Shape>
+    </Transform>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto renderer = createSceneRenderer(*r.scene, sized(128));
+  renderer->render(std::nullopt);
+  const Image img = renderer->readPixels();
+  const Camera cam = renderer->camera();
+  auto px = [&](double x, double y) {
+    const glm::dvec3 p = cam.project({x, y, 0.5});
+    return img.at(int(p.x), int(p.y));
+  };
+  EXPECT_GT(px(-0.6, -0.3).r, 100) << "left box below the plane stays";
+  EXPECT_EQ(px(-0.6, 0.3).r, 0) << "left box above the plane is cut away";
+  EXPECT_GT(px(0.6, 0.3).g, 100) << "the plane does not reach the right box";
+}
+
+TEST(SceneRenderer, UnknownViewpointNameIsAClearError) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("v.x3d", x3d(R"(<Viewpoint DEF="Side"/>)")), builtinRegistry());
+  ASSERT_TRUE(r.ok());
+  RendererOptions o;
+  o.viewpoint = "Top";
+  try {
+    createSceneRenderer(*r.scene, o);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'Top'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Side"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
