@@ -15,26 +15,12 @@
 #include "millsim/haptics/LineProxyRenderer.h"
 #include "millsim/haptics/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
+#include "AnalyticScenes.h"
 
 using namespace millsim;
+using namespace millsim::test;
 
 namespace {
-
-constexpr double kH = 0.1e-3;
-constexpr float kIso = 500.f;
-const ToolGeometry kTool{0.5e-3, 0.25e-3, 3.0e-3};
-
-// Material below y = 0 in a 64³ block of 0.1 mm voxels, one-voxel soft edge.
-VoxelVolume slab() {
-  const int n = 64;
-  std::vector<float> v(std::size_t(n) * n * n);
-  const double c = (n - 1) * 0.5;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        v[(std::size_t(k) * n + j) * n + i] = float(1000.0 * std::clamp(0.5 - (j - c), 0.0, 1.0));
-  return VoxelVolume::fromDense(v.data(), {n, n, n}, glm::dvec3(kH), 0.f);
-}
 
 Trajectory line(glm::dvec3 from, glm::dvec3 to, double seconds, double hold) {
   return Trajectory({{0.0, Pose{from, glm::dquat(1, 0, 0, 0)}, false},

@@ -14,34 +14,12 @@
 #include "millsim/haptics/RendererSwitch.h"
 #include "millsim/haptics/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
+#include "AnalyticScenes.h"
 
 using namespace millsim;
+using namespace millsim::test;
 
 namespace {
-
-constexpr double kH = 0.1e-3;  // voxel size
-constexpr float kIso = 500.f;
-const ToolGeometry kTool{0.5e-3, 0.25e-3, 3.0e-3};
-
-// A volume of n³ voxels centred on the origin whose material is where
-// dist(p) < 0 (dist in metres), with a one-voxel anti-aliased edge.
-VoxelVolume analytic(int n, const std::function<double(const glm::dvec3&)>& dist) {
-  std::vector<float> v(std::size_t(n) * n * n);
-  const double c = (n - 1) * 0.5;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const glm::dvec3 p = (glm::dvec3(i, j, k) - c) * kH;
-        v[(std::size_t(k) * n + j) * n + i] = float(1000.0 * std::clamp(0.5 - dist(p) / kH, 0.0, 1.0));
-      }
-  return VoxelVolume::fromDense(v.data(), {n, n, n}, glm::dvec3(kH), 0.f);
-}
-
-VoxelVolume slab() { return analytic(64, [](const glm::dvec3& p) { return p.y; }); }  // material below y = 0
-
-Pose vertical(glm::dvec3 at) { return Pose{at, glm::dquat(1, 0, 0, 0)}; }
-// Shaft tilted from +Y towards +X by `angle` (rotation about −Z).
-Pose tilted(glm::dvec3 at, double angle) { return Pose{at, glm::angleAxis(angle, glm::dvec3(0, 0, -1))}; }
 
 struct Rig {
   VoxelVolume volume;
