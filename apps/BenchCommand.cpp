@@ -1,4 +1,4 @@
-// millsim bench accuracy | rates: the measurements behind docs/results.md
+// millsim bench accuracy | rates | zwidth: the measurements behind docs/results.md
 // (scripts/bench runs them). Renderers are named by registry type and
 // configured by field name, so a new renderer type needs no change here.
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "Commands.h"
 #include "measure/Accuracy.h"
 #include "measure/Rates.h"
+#include "measure/ZWidth.h"
 
 namespace millsim::app {
 
@@ -113,6 +114,7 @@ struct RatesArgs {
   std::string field;
   std::vector<std::string> values;
   long frames = 3000;
+  bool fine = false;
   std::string csv;
 };
 
@@ -122,20 +124,77 @@ int runRates(const RatesArgs& a) {
     const bool fresh = !std::ifstream(a.csv).good();
     csv.open(a.csv, std::ios::app);
     if (!csv) throw std::runtime_error("cannot write " + a.csv);
-    if (fresh) csv << "renderer,resolution,frames,mean_us,p50_us,p99_us,rate_hz,max_contacts\n";
+    if (fresh) csv << "renderer,resolution,frames,mean_us,p50_us,p99_us,rate_hz,max_contacts,grid\n";
   }
   std::vector<std::string> values = a.values.empty() ? std::vector<std::string>{""} : a.values;
   for (const std::string& v : values) {
     RendererSpec spec{a.renderer, {}};
     std::string label = "default";
     if (!a.field.empty() && !v.empty()) spec.fields.push_back({a.field, v}), label = a.field + "=" + v;
-    const RateResult r = measureRate(spec, a.frames, label);
-    std::cout << r.renderer << " " << r.resolution << ": mean " << fmt(r.meanUs) << " us, p50 " << fmt(r.p50Us)
+    const RateResult r = measureRate(spec, a.frames, label, a.fine);
+    std::cout << r.renderer << " " << r.resolution << " on " << r.grid << ": mean " << fmt(r.meanUs) << " us, p50 " << fmt(r.p50Us)
               << " us, p99 " << fmt(r.p99Us) << " us, " << fmt(r.rateHz, 4) << " Hz equivalent, " << r.maxContacts
               << " contacts\n";
     if (csv) csv << r.renderer << "," << r.resolution << "," << r.frames << "," << r.meanUs << "," << r.p50Us << ","
-                 << r.p99Us << "," << r.rateHz << "," << r.maxContacts << "\n";
+                 << r.p99Us << "," << r.rateHz << "," << r.maxContacts << "," << r.grid << "\n";
   }
+  return kExitOk;
+}
+
+struct ZWidthArgs {
+  std::vector<std::string> renderers;
+  double from = 250.0, to = 1024000.0;
+  bool quick = false;
+  std::string csv, md;
+};
+
+int runZWidth(const ZWidthArgs& a) {
+  if (!(a.from > 0.0) || !(a.to >= a.from))
+    throw std::invalid_argument("--from and --to must satisfy 0 < from <= to (N/m), got " + fmt(a.from) + " and " +
+                                fmt(a.to));
+  const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
+  // The quick run keeps the measured arm's grip (docs/stability.md); the full one spans loose to firm.
+  const std::vector<HandModel> hands = a.quick ? std::vector<HandModel>{handCorners()[1]} : handCorners();
+  const std::vector<double> values = sqrt2Steps(a.from, a.to);
+  std::vector<ZWidthResult> rows;
+  for (const std::string& type : types) {
+    if (stiffnessField(type).empty()) {
+      std::cerr << type << ": no known stiffness field, skipped\n";
+      continue;
+    }
+    for (const HandModel& hand : hands) {
+      rows.push_back(zWidthSweep(type, hand, values));
+      const ZWidthResult& r = rows.back();
+      std::cerr << type << " " << r.hand << ": largest stable " << r.field << " = " << fmt(r.largestStable)
+                << " N/m (default " << fmt(r.defaultStiffness) << ")"
+                << (r.firstUnstable > 0.0 ? ", " + fmt(r.firstUnstable) + " fails: " + r.points.back().failure : "")
+                << "\n";
+    }
+  }
+  if (!a.csv.empty()) {
+    auto f = openOut(a.csv);
+    f << "renderer,field,hand,default,rendered_at_default,largest_stable,first_unstable,rendered_at_largest,failure\n";
+    for (const auto& r : rows) {
+      std::string why = r.firstUnstable > 0.0 ? r.points.back().failure : "";
+      for (char& c : why)
+        if (c == ',' || c == '"') c = ';';
+      f << r.renderer << "," << r.field << "," << r.hand << "," << r.defaultStiffness << "," << r.renderedAtDefault
+        << "," << r.largestStable << "," << r.firstUnstable << "," << r.renderedAtLargest << "," << why << "\n";
+    }
+  }
+  auto n = [](double v) { return std::to_string(std::lround(v)); };
+  std::ostringstream md;
+  md << "| renderer | field = default (felt, N/m) | grip | largest stable (N/m) | × default | felt there (N/m) | "
+        "first unstable (N/m): why |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows)
+    md << "| " << r.renderer << " | " << r.field << " = " << n(r.defaultStiffness) << " (" << n(r.renderedAtDefault)
+       << ") | " << r.hand << " | " << (r.largestStable > 0.0 ? n(r.largestStable) : "< " + n(a.from))
+       << (r.firstUnstable > 0.0 ? "" : " (all tried)") << " | " << fmt(r.largestStable / r.defaultStiffness, 2)
+       << " | " << n(r.renderedAtLargest) << " | "
+       << (r.firstUnstable > 0.0 ? n(r.firstUnstable) + ": " + r.points.back().failure : "none up to " + n(a.to))
+       << " |\n";
+  if (!a.md.empty()) openOut(a.md) << md.str();
+  else std::cout << md.str();
   return kExitOk;
 }
 
@@ -168,12 +227,31 @@ void addBenchCommand(CLI::App& app, int& result) {
   rates->add_option("--field", r->field, "Resolution field to set, e.g. vertexCount or slices");
   rates->add_option("--values", r->values, "Values of --field, e.g. 51,101,251")->delimiter(',');
   rates->add_option("--frames", r->frames, "Frames timed per value (default 3000)");
+  rates->add_flag("--fine", r->fine, "8x the voxels: the phantom at 512x512x352 with 0.05 mm voxels");
   rates->add_option("--csv", r->csv, "Append rows to this CSV");
   rates->callback([r, &result] {
     try {
       result = runRates(*r);
     } catch (const std::exception& e) {
       std::cerr << "millsim bench rates: error: " << e.what() << "\n";
+      result = kExitBadInput;
+    }
+  });
+
+  auto* zw = bench->add_subcommand(
+      "zwidth", "Largest stable stiffness per renderer and grip, closed loop at 1 kHz (Z-width sweep)");
+  auto z = std::make_shared<ZWidthArgs>();
+  zw->add_option("--renderer", z->renderers, "Renderer type (repeatable; default: every registered one)");
+  zw->add_option("--from", z->from, "Lowest stiffness tried, N/m (default 250)");
+  zw->add_option("--to", z->to, "Highest stiffness tried, N/m (default 1024000); values rise in sqrt(2) steps");
+  zw->add_flag("--quick", z->quick, "Only the measured arm's grip (M=0.554 kg, B=6.45 N s/m, K=135 N/m)");
+  zw->add_option("--csv", z->csv, "Write one row per renderer and grip as CSV");
+  zw->add_option("--md", z->md, "Write the Markdown table here (default: stdout)");
+  zw->callback([z, &result] {
+    try {
+      result = runZWidth(*z);
+    } catch (const std::exception& e) {
+      std::cerr << "millsim bench zwidth: error: " << e.what() << "\n";
       result = kExitBadInput;
     }
   });

@@ -13,7 +13,11 @@ namespace millsim::measure {
 
 namespace {
 
-VoxelVolume& phantom() {
+VoxelVolume& phantom(bool fine) {
+  if (fine) {
+    static VoxelVolume v = makeToothPhantom(ToothPhantomOptions{{512, 512, 352}, 0.05e-3, false});
+    return v;
+  }
   static VoxelVolume v = makeToothPhantom(ToothPhantomOptions{});
   return v;
 }
@@ -27,19 +31,20 @@ Pose contactPose(long n, double y) {
 
 }  // namespace
 
-RateResult measureRate(const RendererSpec& spec, long frames, const std::string& label) {
+RateResult measureRate(const RendererSpec& spec, long frames, const std::string& label, bool fine) {
   auto node = makeRenderer(spec);
   HapticScene scene;
-  scene.addVolume(phantom(), glm::dmat4(1.0), 700.0);
+  VoxelVolume& volume = phantom(fine);
+  scene.addVolume(volume, glm::dmat4(1.0), 700.0);
   double top = 12e-3;
   while (top > 0.0 && !scene.inside({0.0, top, 0.0})) top -= 0.01e-3;
-  const double y = top + contactOffset(*node, kTool, phantom().voxelSize().x) - 0.3e-3;
+  const double y = top + contactOffset(*node, kTool, volume.voxelSize().x) - 0.3e-3;
   auto algorithm = node->compile(kTool, scene);
   algorithm->reset(Pose{{0.0, 12e-3, 0.0}, {1, 0, 0, 0}});
   for (int i = 0; i <= 100; ++i)
     algorithm->step(scene, {Pose{{0.0, 12e-3 + (y - 12e-3) * i / 100.0, 0.0}, {1, 0, 0, 0}}, 1e-3});
   std::vector<double> us(std::size_t(std::max(frames, 1L)));
-  RateResult r{spec.type, label, frames};
+  RateResult r{spec.type, label, fine ? "512x512x352 @ 0.05 mm" : "256x256x176 @ 0.1 mm", frames};
   for (long n = 0; n < frames; ++n) {
     const auto t0 = std::chrono::steady_clock::now();
     const HapticOutput out = algorithm->step(scene, {contactPose(n, y), 1e-3});

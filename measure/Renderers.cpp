@@ -64,9 +64,28 @@ double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& to
   algorithm->reset(Pose{{0.0, top, 0.0}, {1, 0, 0, 0}});
   for (double y = top; y > -tool.tipRadius; y -= step) {
     const HapticOutput out = algorithm->step(*s->scene, HapticInput{Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
-    if (glm::length(out.force) > 0.0) return y;
+    // Above a micronewton: a coupled renderer (#3) may report a round-off force in free space.
+    if (glm::length(out.force) > 1e-6) return y;
   }
   return 0.0;
+}
+
+double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h) {
+  const double yc = contactOffset(renderer, tool, h);
+  auto s = voxelise(halfSpace({-3e-3, -2e-3, -3e-3}, {3e-3, 1e-3, 3e-3}), h);
+  auto algorithm = renderer.compile(tool, *s->scene);
+  double y = yc + h;
+  algorithm->reset(Pose{{0.0, y, 0.0}, {1, 0, 0, 0}});
+  // Descend slowly to each depth and hold there until a coupled tool has settled.
+  auto forceAt = [&](double depth) {
+    HapticOutput out;
+    for (; y > yc - depth; y -= 0.01 * h) out = algorithm->step(*s->scene, {Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
+    for (int i = 0; i < 500; ++i) out = algorithm->step(*s->scene, {Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
+    return out.force.y;
+  };
+  const double d1 = 0.2 * h, d2 = 0.6 * h;
+  const double f1 = forceAt(d1), f2 = forceAt(d2);
+  return (f2 - f1) / (d2 - d1);
 }
 
 }  // namespace millsim::measure

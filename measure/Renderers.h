@@ -36,4 +36,11 @@ ToolGeometry standardTool();
 // suites press "the part each renderer feels" by this offset.
 double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h);
 
+// The stiffness the device meets on a flat surface voxelised at h (N/m): the
+// force difference between two quasi-static depths past first contact (0.2h
+// and 0.6h) over their distance, so an error in the contact height cancels.
+// #1: its proxy spring; #2: its springConstant shared among the touching
+// points; #3: the coupling in series with the contact.
+double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h);
+
 }  // namespace millsim::measure
