@@ -29,7 +29,15 @@ public:
         tip_(ProxyPoint::Params{proxyIterations, 2.0}),
         shaft_(ProxyPoint::Params{proxyIterations, 2.0}),
         before_(std::size_t(p.vertices)),
-        after_(std::size_t(p.vertices)) {}
+        after_(std::size_t(p.vertices)) {
+    // Shaft vertices inside the burr sphere are the burr's to feel: one there
+    // would "collide" with the wall of the burr's own hole, and the drawn shaft,
+    // offset by its radius from an intersection closer to the tip than that
+    // radius, would swing tens of degrees (seen in the §8.2 procedure).
+    while (firstShaftVertex_ < p.vertices - 1 &&
+           p.tool.shaftLength * double(firstShaftVertex_) / double(p.vertices - 1) < p.tool.tipRadius)
+      ++firstShaftVertex_;
+  }
 
   std::string name() const override { return "LineProxyRenderer"; }
 
@@ -69,7 +77,7 @@ public:
     int colliding = 0;
     double deepest = 0.0;
     glm::dvec3 deepestVertex(0.0);
-    for (int i = 1; i < p_.vertices; ++i) {
+    for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
       const glm::dvec3 v = vertex(proxyPoint, dir, i);
       const double s = scene.field(v);
       if (s > 0.0) {
@@ -153,7 +161,7 @@ private:
   // Samples the shaft vertices of a line into `values`; true if any collides.
   bool sample(const HapticScene& scene, const glm::dvec3& tip, const glm::dvec3& dir, std::vector<double>& values) const {
     bool any = false;
-    for (int i = 1; i < p_.vertices; ++i) {
+    for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
       values[std::size_t(i)] = scene.field(vertex(tip, dir, i));
       any |= values[std::size_t(i)] > 0.0;
     }
@@ -166,7 +174,7 @@ private:
                           const glm::dvec3& dirB) const {
     double best = 2.0;
     glm::dvec3 ip(0.0);
-    for (int i = 1; i < p_.vertices; ++i) {
+    for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
       const double a = before_[std::size_t(i)], b = after_[std::size_t(i)];
       if (b <= 0.0) continue;  // not active
       const double fraction = a >= 0.0 ? 0.0 : std::clamp((0.0 - a) / (b - a), 0.0, 1.0);
@@ -210,6 +218,7 @@ private:
   }
 
   Params p_;
+  int firstShaftVertex_ = 1;  // the first vertex above the burr sphere
   ProxyPoint tip_;
   ProxyPoint shaft_;
   glm::dvec3 prevTip_{0.0};
