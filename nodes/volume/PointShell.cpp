@@ -6,6 +6,28 @@
 
 namespace millsim {
 
+// A coarse point sits at the centroid of its block's material, not at the
+// block centre: at the centre it could outlive the material it stands for. A
+// burr that had cut all but a corner voxel of a block rested on a point in the
+// middle of its own cut, which no cut within its reach could remove, and
+// milling stalled (the §8.2 procedure at pointShellScale 3). The centroid stays
+// inside the block (within (s − 1)/2 fine voxels of its centre), so
+// coarseIndexOf still recovers the block by rounding.
+template <class Fine>
+glm::dvec3 PointShell::materialCentre(const Fine& fine, int I, int J, int K) const {
+  const glm::dvec3 centre = glm::dvec3(I, J, K) * double(scale_) + 0.5 * (scale_ - 1);
+  if (scale_ == 1) return centre;
+  glm::dvec3 sum(0.0);
+  int n = 0;
+  for (int k = 0; k < scale_; ++k)
+    for (int j = 0; j < scale_; ++j)
+      for (int i = 0; i < scale_; ++i) {
+        const int x = I * scale_ + i, y = J * scale_ + j, z = K * scale_ + k;
+        if (fine(x, y, z) > iso_) sum += glm::dvec3(x, y, z), ++n;
+      }
+  return n > 0 ? sum / double(n) : centre;
+}
+
 PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
     : volume_(&volume), iso_(isoValue), scale_(scale) {
   if (scale < 1) throw VolumeError("point shell scale must be a positive integer, got " + std::to_string(scale));
@@ -79,14 +101,15 @@ void PointShell::rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int 
         const float n[6] = {coarse(acc, I - 1, J, K), coarse(acc, I + 1, J, K), coarse(acc, I, J - 1, K),
                             coarse(acc, I, J + 1, K), coarse(acc, I, J, K - 1), coarse(acc, I, J, K + 1)};
         ShellPoint p;
-        if (!makePoint(v, n, I, J, K, p)) continue;
+        const auto fine = [&](int x, int y, int z) { return acc.getValue(openvdb::Coord(x, y, z)); };
+        if (!makePoint(v, n, materialCentre(fine, I, J, K), p)) continue;
         bucket.points.push_back(p);
         bucket.box.add(p.position);
       }
   count_ += bucket.points.size();
 }
 
-bool PointShell::makePoint(float v, const float n[6], int I, int J, int K, ShellPoint& out) const {
+bool PointShell::makePoint(float v, const float n[6], const glm::dvec3& at, ShellPoint& out) const {
   if (v <= iso_) return false;
   bool surface = false;
   for (int i = 0; i < 6; ++i) surface |= n[i] <= iso_;
@@ -103,9 +126,7 @@ bool PointShell::makePoint(float v, const float n[6], int I, int J, int K, Shell
     len = glm::length(g);
     if (!(len > 0.0)) g = glm::dvec3(0, -1, 0), len = 1.0;
   }
-  // Coarse voxel centre in fine index units.
-  const glm::dvec3 fine = glm::dvec3(I, J, K) * double(scale_) + 0.5 * (scale_ - 1);
-  out = ShellPoint{glm::vec3(volume_->indexToLocal(fine)), glm::vec3(-g / len)};
+  out = ShellPoint{glm::vec3(volume_->indexToLocal(at)), glm::vec3(-g / len)};
   return true;
 }
 
@@ -223,7 +244,7 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
               const float n[6] = {cv(I - 1, J, K), cv(I + 1, J, K), cv(I, J - 1, K),
                                   cv(I, J + 1, K), cv(I, J, K - 1), cv(I, J, K + 1)};
               ShellPoint p;
-              if (!makePoint(v, n, I, J, K, p)) continue;
+              if (!makePoint(v, n, materialCentre(fine, I, J, K), p)) continue;
               flushOldBefore(key({I, J, K}));
               merged_.push_back(p);
             }

@@ -5,7 +5,8 @@
 // outside. With scale s > 1 (the paper's reduced resolution) the volume is
 // first reduced over s³ blocks (each coarse voxel takes the densest of its
 // fine voxels, so thin material never vanishes) and the surface voxels of that
-// coarse field are used, which gives roughly 1/s² as many points.
+// coarse field are used, each placed at the centroid of its block's material,
+// which gives roughly 1/s² as many points.
 //
 // Points are bucketed by blocks of 8³ coarse voxels, and buckets by groups of
 // 4³ (super-buckets), each with a tight bounding box: a box query visits only
@@ -128,10 +129,14 @@ private:
   };
 
   float coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const;
-  // The shell point of coarse voxel (I, J, K) with value v and six neighbours
+  // The shell point of a coarse voxel with value v and six neighbours
   // n (−x, +x, −y, +y, −z, +z), if it is a surface voxel. Shared by both paths
-  // so that an update gives bit-for-bit what a rebuild gives.
-  bool makePoint(float v, const float n[6], int I, int J, int K, ShellPoint& out) const;
+  // so that an update gives bit-for-bit what a rebuild gives. `at`: where the
+  // point sits, in fine index units (materialCentre).
+  bool makePoint(float v, const float n[6], const glm::dvec3& at, ShellPoint& out) const;
+  // The centroid of the fine voxels of coarse voxel (I, J, K) that hold
+  // material, in fine index units; `fine(i, j, k)` reads a fine voxel.
+  template <class Fine> glm::dvec3 materialCentre(const Fine& fine, int I, int J, int K) const;
   glm::ivec3 coarseIndexOf(const ShellPoint& p) const;
   void rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b);
   void refreshSuper(int s);

@@ -177,3 +177,19 @@ TEST(Replay, LineProxyDrawnShaftStaysWithTheDeviceWhileMillingStraightDown) {
   EXPECT_GT(rows, 9000);
   EXPECT_LT(worst, 5.0) << "the drawn shaft left the device's by " << worst << "° at t = " << worstT << " s";
 }
+
+// Algorithm #3 at its default pointShellScale 3 must mill the §8.2 hole like
+// the others. Coarse shell points used to sit at their block's centre, where
+// a point could outlive the material it stood for: the burr rested on one in
+// the middle of its own cut and milling stalled at 0.79 mm³ (pointShellScale 1
+// milled 2.5 mm³).
+TEST(Replay, BarbicMillsTheHoleAtItsDefaultShellScale) {
+  LoadResult r = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  ReplayOptions options;
+  options.renderer = "BarbicRenderer";
+  options.until = 10.0;
+  const ReplaySummary s =
+      replay(*r.scene, Trajectory::load(MILLSIM_SOURCE_DIR "/x3d/trajectories/section-8-2.csv"), nullptr, options);
+  EXPECT_GT(s.removedVolume * 1e9, 2.0) << "mm³ removed by 10 s (the other renderers remove 2.4-2.6)";
+}
