@@ -147,7 +147,7 @@ w("")
 
 w("## Accuracy\n")
 w("References, metrics and normalisation: [accuracy.md](accuracy.md). Every row is all five scenes together; "
-  "the full per-scene data is in `build/<preset>/bench/accuracy.csv` after a run.\n")
+  "the full per-scene data is in `build/<preset>/bench-results/accuracy.csv` after a run.\n")
 w(open(os.path.join(a.data, "accuracy.md")).read())
 w("\n![Pareto](images/pareto.png)\n\n![Convergence in h](images/convergence.png)\n")
 

@@ -120,6 +120,7 @@ public:
 private:
   struct Bucket {
     std::vector<ShellPoint> points;
+    std::vector<std::uint16_t> cells;  // per point: its coarse voxel within the bucket, (k·8 + j)·8 + i
     Aabb box;
   };
   struct Super {
@@ -129,15 +130,18 @@ private:
   };
 
   float coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const;
-  // The shell point of a coarse voxel with value v and six neighbours
-  // n (−x, +x, −y, +y, −z, +z), if it is a surface voxel. Shared by both paths
-  // so that an update gives bit-for-bit what a rebuild gives. `at`: where the
-  // point sits, in fine index units (materialCentre).
-  bool makePoint(float v, const float n[6], const glm::dvec3& at, ShellPoint& out) const;
+  // The shell point of coarse voxel (I, J, K) with value v and six
+  // neighbours n (−x, +x, −y, +y, −z, +z), if it is a surface voxel; `fine(i,
+  // j, k)` reads a fine voxel (within s + 1 voxels of the block). Shared by
+  // both paths so that an update gives bit-for-bit what a rebuild gives.
+  template <class Fine>
+  bool makePoint(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint& out) const;
   // The centroid of the fine voxels of coarse voxel (I, J, K) that hold
-  // material, in fine index units; `fine(i, j, k)` reads a fine voxel.
+  // material, in fine index units.
   template <class Fine> glm::dvec3 materialCentre(const Fine& fine, int I, int J, int K) const;
-  glm::ivec3 coarseIndexOf(const ShellPoint& p) const;
+  // From `at` (fine index units, inside) out along `outward` to the iso-surface
+  // of the trilinear fine field, at most s fine voxels away.
+  template <class Fine> glm::dvec3 ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward) const;
   void rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b);
   void refreshSuper(int s);
   void refreshSuperOfBucket(int b);
@@ -156,6 +160,7 @@ private:
   static constexpr std::size_t kScratchVoxels = 64 * 64 * 64;
   std::vector<float> fineScratch_, coarseScratch_;
   std::vector<ShellPoint> merged_;
+  std::vector<std::uint16_t> mergedCells_;
 };
 
 }  // namespace millsim
