@@ -24,6 +24,9 @@ def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0
                 fy=1.0 + 0.5 * np.sin(t) + force_noise * rng.standard_normal(n),
                 tz=0.002 * np.sin(0.5 * t), period_us=np.full(n, period_us), button=(t < 20).astype(float))
     cols["tz"][30000:30005] += kick
+    # A watchdog trip with its soft start at 35 s: a loop event, not the renderer's; it must not cost force.
+    cols["flags"][35000:35250] = (1 << 9) | (1 << 11)
+    cols["fy"][35000] = 0.0
     np.savetxt(path, np.stack([cols[h] for h in HEADER], 1), delimiter=",", header=",".join(HEADER), comments="")
 
 
