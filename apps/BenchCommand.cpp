@@ -198,10 +198,23 @@ int runZWidth(const ZWidthArgs& a) {
   return kExitOk;
 }
 
+// Runs one bench verb; a bad argument or an unwritable file is a clear error and exit 2.
+template <class Args, class Run>
+void onRun(CLI::App* verb, std::shared_ptr<Args> args, Run run, int& result) {
+  verb->callback([verb, args, run, &result] {
+    try {
+      result = run(*args);
+    } catch (const std::exception& e) {
+      std::cerr << "millsim bench " << verb->get_name() << ": error: " << e.what() << "\n";
+      result = kExitBadInput;
+    }
+  });
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& app, int& result) {
-  auto* bench = app.add_subcommand("bench", "Measure accuracy and frame time of the haptics renderers");
+  auto* bench = app.add_subcommand("bench", "Measure accuracy, frame time and stiffness headroom of the haptics renderers");
   bench->require_subcommand(1);
 
   auto* acc = bench->add_subcommand("accuracy", "Force/torque error against analytic references, and frame time");
@@ -212,14 +225,7 @@ void addBenchCommand(CLI::App& app, int& result) {
   acc->add_flag("--quick", a->quick, "Fewer poses (3 depths, 3 tilts, 1 phase)");
   acc->add_option("--csv", a->csv, "Write every row (per scene and 'all') as CSV");
   acc->add_option("--md", a->md, "Write the Markdown tables here (default: stdout)");
-  acc->callback([a, &result] {
-    try {
-      result = runAccuracy(*a);
-    } catch (const std::exception& e) {
-      std::cerr << "millsim bench accuracy: error: " << e.what() << "\n";
-      result = kExitBadInput;
-    }
-  });
+  onRun(acc, a, runAccuracy, result);
 
   auto* rates = bench->add_subcommand("rates", "Frame time on the tooth phantom (the paper's §8.1 test)");
   auto r = std::make_shared<RatesArgs>();
@@ -229,14 +235,7 @@ void addBenchCommand(CLI::App& app, int& result) {
   rates->add_option("--frames", r->frames, "Frames timed per value (default 3000)");
   rates->add_flag("--fine", r->fine, "8x the voxels: the phantom at 512x512x352 with 0.05 mm voxels");
   rates->add_option("--csv", r->csv, "Append rows to this CSV");
-  rates->callback([r, &result] {
-    try {
-      result = runRates(*r);
-    } catch (const std::exception& e) {
-      std::cerr << "millsim bench rates: error: " << e.what() << "\n";
-      result = kExitBadInput;
-    }
-  });
+  onRun(rates, r, runRates, result);
 
   auto* zw = bench->add_subcommand(
       "zwidth", "Largest stable stiffness per renderer and grip, closed loop at 1 kHz (Z-width sweep)");
@@ -247,14 +246,7 @@ void addBenchCommand(CLI::App& app, int& result) {
   zw->add_flag("--quick", z->quick, "Only the measured arm's grip (M=0.554 kg, B=6.45 N s/m, K=135 N/m)");
   zw->add_option("--csv", z->csv, "Write one row per renderer and grip as CSV");
   zw->add_option("--md", z->md, "Write the Markdown table here (default: stdout)");
-  zw->callback([z, &result] {
-    try {
-      result = runZWidth(*z);
-    } catch (const std::exception& e) {
-      std::cerr << "millsim bench zwidth: error: " << e.what() << "\n";
-      result = kExitBadInput;
-    }
-  });
+  onRun(zw, z, runZWidth, result);
 }
 
 }  // namespace millsim::app
