@@ -60,7 +60,7 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
   // Reserve room for every surface point a bucket could ever hold if it holds
   // material now: milling only removes material, so no other bucket can gain points.
   auto acc = volume.grid().getConstAccessor();
-  const int bucketVoxels = kBucket * kBucket * kBucket;
+  const int bucketVoxels = int(kMaxBucketPoints);
   for (auto leaf = volume.grid().tree().cbeginLeaf(); leaf; ++leaf) {
     if (leaf->onVoxelCount() == 0) continue;
     const openvdb::Coord o = leaf->origin();
@@ -82,8 +82,9 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
   for (int s = 0; s < int(supers_.size()); ++s) refreshSuper(s);
   fineScratch_.reserve(kScratchVoxels);
   coarseScratch_.reserve(kScratchVoxels);
-  merged_.reserve(std::size_t(kBucket * kBucket * kBucket));
-  mergedCells_.reserve(std::size_t(kBucket * kBucket * kBucket));
+  // Before the cap a merged bucket can list two points per voxel.
+  merged_.reserve(2 * kMaxBucketPoints);
+  mergedCells_.reserve(2 * kMaxBucketPoints);
 }
 
 // Density of the coarse voxel (I, J, K): the densest of the s³ fine voxels it
@@ -120,12 +121,14 @@ void PointShell::rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int 
         if (v <= iso_) continue;
         const float n[6] = {coarse(acc, I - 1, J, K), coarse(acc, I + 1, J, K), coarse(acc, I, J - 1, K),
                             coarse(acc, I, J + 1, K), coarse(acc, I, J, K - 1), coarse(acc, I, J, K + 1)};
-        ShellPoint p;
+        ShellPoint p[2];
         const auto fine = [&](int x, int y, int z) { return acc.getValue(openvdb::Coord(x, y, z)); };
-        if (!makePoint(fine, v, n, I, J, K, p)) continue;
-        bucket.points.push_back(p);
-        bucket.cells.push_back(std::uint16_t(((K - lo.z) * kBucket + (J - lo.y)) * kBucket + (I - lo.x)));
-        bucket.box.add(p.position);
+        const int m = makePoints(fine, v, n, I, J, K, p);
+        for (int q = 0; q < m && bucket.points.size() < kMaxBucketPoints; ++q) {
+          bucket.points.push_back(p[q]);
+          bucket.cells.push_back(std::uint16_t(((K - lo.z) * kBucket + (J - lo.y)) * kBucket + (I - lo.x)));
+          bucket.box.add(p[q].position);
+        }
       }
   count_ += bucket.points.size();
 }
@@ -151,27 +154,35 @@ glm::dvec3 PointShell::ontoSurface(const Fine& fine, glm::dvec3 at, const glm::d
 }
 
 template <class Fine>
-bool PointShell::makePoint(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint& out) const {
-  if (v <= iso_) return false;
+int PointShell::makePoints(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint out[2]) const {
+  if (v <= iso_) return 0;
   bool surface = false;
   for (int i = 0; i < 6; ++i) surface |= n[i] <= iso_;
-  if (!surface) return false;
+  if (!surface) return 0;
+  const glm::dvec3 centre = materialCentre(fine, I, J, K);
+  auto place = [&](const glm::dvec3& normal) {
+    return ShellPoint{glm::vec3(volume_->indexToLocal(ontoSurface(fine, centre, normal))), glm::vec3(normal)};
+  };
+  // A sheet one voxel thin across an axis has a surface on each side, and one
+  // point can face only one way. Its normal would come from which outside
+  // neighbour is less empty: on a one-voxel plate at scale 2 that was the far
+  // side, so the tool met nothing until it reached the far face and was then
+  // pushed the wrong way (found by the accuracy suite). Two points, one per face.
+  for (int a = 0; a < 3; ++a)
+    if (n[2 * a] <= iso_ && n[2 * a + 1] <= iso_) {
+      glm::dvec3 e(0.0);
+      e[a] = 1.0;
+      out[0] = place(-e), out[1] = place(e);
+      return 2;
+    }
   // Outward normal: down the density gradient (central differences; the
-  // voxel size makes it a gradient in metres for anisotropic volumes).
+  // voxel size makes it a gradient in metres for anisotropic volumes). Not a
+  // sheet, so along each axis with an outside neighbour the other is inside
+  // and the gradient cannot vanish.
   const glm::dvec3 h = volume_->voxelSize() * double(scale_);
-  glm::dvec3 g((n[1] - n[0]) / h.x, (n[3] - n[2]) / h.y, (n[5] - n[4]) / h.z);
-  double len = glm::length(g);
-  if (!(len > 0.0)) {
-    // Symmetric neighbourhood (a one-voxel spike): point towards the outside neighbours.
-    g = glm::dvec3(double(n[0] <= iso_) - double(n[1] <= iso_), double(n[2] <= iso_) - double(n[3] <= iso_),
-                   double(n[4] <= iso_) - double(n[5] <= iso_));
-    len = glm::length(g);
-    if (!(len > 0.0)) g = glm::dvec3(0, -1, 0), len = 1.0;
-  }
-  const glm::dvec3 normal = -g / len;
-  const glm::dvec3 at = ontoSurface(fine, materialCentre(fine, I, J, K), normal);
-  out = ShellPoint{glm::vec3(volume_->indexToLocal(at)), glm::vec3(normal)};
-  return true;
+  const glm::dvec3 g((n[1] - n[0]) / h.x, (n[3] - n[2]) / h.y, (n[5] - n[4]) / h.z);
+  out[0] = place(-g / glm::length(g));
+  return 1;
 }
 
 void PointShell::refreshSuperOfBucket(int b) {
@@ -288,16 +299,22 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
               if (v <= iso_) continue;
               const float n[6] = {cv(I - 1, J, K), cv(I + 1, J, K), cv(I, J - 1, K),
                                   cv(I, J + 1, K), cv(I, J, K - 1), cv(I, J, K + 1)};
-              ShellPoint p;
-              if (!makePoint(fine, v, n, I, J, K, p)) continue;
+              ShellPoint p[2];
+              const int m = makePoints(fine, v, n, I, J, K, p);
+              if (m == 0) continue;
               flushOldBefore(cellOf(I, J, K));
-              merged_.push_back(p);
-              mergedCells_.push_back(cellOf(I, J, K));
+              for (int q = 0; q < m; ++q) {
+                merged_.push_back(p[q]);
+                mergedCells_.push_back(cellOf(I, J, K));
+              }
             }
         flushOldBefore(std::numeric_limits<int>::max());
         count_ -= nOld;
-        bucket.points.assign(merged_.begin(), merged_.end());  // within capacity: no allocation
-        bucket.cells.assign(mergedCells_.begin(), mergedCells_.end());
+        // Within capacity, so no allocation; the same cap as a rebuild (the tail of a bucket
+        // with more points than voxels, which real data does not reach, is dropped by both).
+        const std::size_t keep = std::min(merged_.size(), kMaxBucketPoints);
+        bucket.points.assign(merged_.begin(), merged_.begin() + std::ptrdiff_t(keep));
+        bucket.cells.assign(mergedCells_.begin(), mergedCells_.begin() + std::ptrdiff_t(keep));
         count_ += bucket.points.size();
         bucket.box = Aabb{};
         for (const ShellPoint& p : bucket.points) bucket.box.add(p.position);

@@ -53,6 +53,9 @@ struct Aabb {
 class PointShell {
 public:
   static constexpr int kBucket = 8;  // coarse voxels per bucket edge
+  // Points a bucket may hold: its capacity, reserved once (one per voxel; a
+  // sheet voxel has two, but its outside neighbours have none).
+  static constexpr std::size_t kMaxBucketPoints = std::size_t(kBucket) * kBucket * kBucket;
   static constexpr int kSuper = 4;   // buckets per super-bucket edge
 
   PointShell(const VoxelVolume& volume, float isoValue, int scale);
@@ -130,12 +133,13 @@ private:
   };
 
   float coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const;
-  // The shell point of coarse voxel (I, J, K) with value v and six
-  // neighbours n (−x, +x, −y, +y, −z, +z), if it is a surface voxel; `fine(i,
-  // j, k)` reads a fine voxel (within s + 1 voxels of the block). Shared by
-  // both paths so that an update gives bit-for-bit what a rebuild gives.
+  // The shell points of coarse voxel (I, J, K) with value v and six
+  // neighbours n (−x, +x, −y, +y, −z, +z): none inside or outside the
+  // surface, two for a voxel-thin sheet (one per face), else one. `fine(i, j,
+  // k)` reads a fine voxel (within s + 1 voxels of the block). Shared by both
+  // paths so that an update gives bit-for-bit what a rebuild gives.
   template <class Fine>
-  bool makePoint(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint& out) const;
+  int makePoints(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint out[2]) const;
   // The centroid of the fine voxels of coarse voxel (I, J, K) that hold
   // material, in fine index units.
   template <class Fine> glm::dvec3 materialCentre(const Fine& fine, int I, int J, int K) const;

@@ -195,6 +195,43 @@ TEST(PointShell, SurfaceVoxelsOfABallWithOutwardNormals) {
   EXPECT_GT(minDot, 0.8);
 }
 
+// Points sit on the iso-surface, not at voxel centres up to a voxel inside it
+// (contact would start that late): on the ball's linear edge the iso-surface
+// is the sphere r = R exactly.
+TEST(PointShell, PointsLieOnTheIsoSurface) {
+  auto v = ball(48, 15.0);
+  for (int scale : {1, 2, 3}) {
+    PointShell shell(v, 0.5f, scale);
+    double worst = 0.0;
+    shell.forEach([&](const ShellPoint& p) { worst = std::max(worst, std::abs(glm::length(p.position) / 1e-3 - 15.0)); });
+    // Scale 1: linear interpolation along the normal (voxel centres were up to 1 voxel off);
+    // coarser scales start from the block's material.
+    EXPECT_LT(worst, scale == 1 ? 0.2 : 0.5) << "scale " << scale << ": voxels off the sphere";
+  }
+}
+
+// A plate one voxel thick has a surface on each side: each face gets points
+// with its own outward normal, at every scale and alignment to the blocks.
+// (At scale 2 one alignment used to give a single layer facing down from the
+// top, and the tool fell onto the far face.)
+TEST(PointShell, AVoxelThinPlateHasPointsOnBothFaces) {
+  for (int row : {16, 17, 18})
+    for (int scale : {1, 2, 3}) {
+      auto v = makeVolume({32, 36, 32}, 1e-3, 0.f, [&](int, int j, int) { return j == row ? 1.f : 0.f; });
+      PointShell shell(v, 0.5f, scale);
+      const double centre = v.indexToLocal(glm::dvec3(0, row, 0)).y;
+      int up = 0, down = 0, wrong = 0;
+      shell.forEach([&](const ShellPoint& p) {
+        const double y = (double(p.position.y) - centre) / 1e-3;  // voxels above the plate's centre
+        if (p.normal.y > 0.9f) up += 1, wrong += y < 0.0;
+        else if (p.normal.y < -0.9f) down += 1, wrong += y > 0.0;
+      });
+      EXPECT_GT(up, 0) << "row " << row << ", scale " << scale << ": no point faces up";
+      EXPECT_GT(down, 0) << "row " << row << ", scale " << scale << ": no point faces down";
+      EXPECT_EQ(wrong, 0) << "row " << row << ", scale " << scale << ": points face away from their side";
+    }
+}
+
 TEST(PointShell, CoarserScalesHaveFewerPoints) {
   auto v = ball(64, 24.0);
   const std::size_t n1 = PointShell(v, 0.5f, 1).size(), n2 = PointShell(v, 0.5f, 2).size(),
