@@ -190,7 +190,9 @@ w("One 40 s real-time run per renderer of `x3d/default.x3d` (`millsim run --rend
   "mills a 2.5 mm hole with the button held, leans the shaft 20° against the hole's edge and holds (0–20 s, "
   "*milling*); then, button off, eases the lean and leans back against the wall and holds as still as it can "
   "(20–40 s, *non-milling*). Every renderer at its defaults. The metrics and the scoring rule are "
-  "`scripts/score-procedure`'s (its header states them); the paper's Table 1 scored #1/#2/#3 as 8/6/5.\n")
+  "`scripts/score-procedure`'s (its header states them); the paper's Table 1 scored #1/#2/#3 as 8/6/5. "
+  "These are real-time runs on a shared host: the closed loop sees the timing, so the per-part figures move between "
+  "runs and a score can move by one (re-run `scripts/bench` to see the spread).\n")
 for rend in renderers:
     txt = optional_text(f"procedure-{rend}.txt").strip()
     if txt:
