@@ -199,6 +199,11 @@ for rend in renderers:
         w(f"`{rend}`:\n\n```\n{txt}\n```\n")
 pmd = optional_text("procedure.md")
 w(pmd if pmd else "Not measured in this run.\n")
+rmd = optional_text("procedure-replay.md")
+if rmd:
+    w("\nThe same procedure in simulated time (`millsim replay`, the same closed-loop hand, every frame exactly "
+      "1 ms): the host's timing is out of it, so these scores are bit-reproducible and judge the renderers alone.\n")
+    w(rmd)
 if pmd:
     for part in ("milling", "non-milling"):
         w(f"\n**{part.capitalize()}** (the paper's Figs. 16–19, {'top' if part == 'milling' else 'bottom'} rows):\n")
