@@ -57,22 +57,35 @@ std::shared_ptr<HapticsRendererNode> makeRenderer(const RendererSpec& spec) {
 
 ToolGeometry standardTool() { return ToolGeometry{0.5e-3, 0.25e-3, 5e-3}; }
 
-double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h) {
-  auto s = voxelise(halfSpace({-3e-3, -2e-3, -3e-3}, {3e-3, 1e-3, 3e-3}), h);
-  auto algorithm = renderer.compile(tool, *s->scene);
+namespace {
+
+// The flat surface (y = 0) the offset and stiffness probes press on.
+std::unique_ptr<AnalyticScene> probeSurface(double h) {
+  return voxelise(halfSpace({-3e-3, -2e-3, -3e-3}, {3e-3, 1e-3, 3e-3}), h);
+}
+
+double contactOffsetOn(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h, AnalyticScene& surface) {
+  HapticScene& scene = *surface.scene;
+  auto algorithm = renderer.compile(tool, scene);
   const double top = 2.0 * tool.tipRadius + 2.0 * h, step = 0.01 * h;
   algorithm->reset(Pose{{0.0, top, 0.0}, {1, 0, 0, 0}});
   for (double y = top; y > -tool.tipRadius; y -= step) {
-    const HapticOutput out = algorithm->step(*s->scene, HapticInput{Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
+    const HapticOutput out = algorithm->step(scene, HapticInput{Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
     // Above a micronewton: a coupled renderer (#3) may report a round-off force in free space.
     if (glm::length(out.force) > 1e-6) return y;
   }
   return 0.0;
 }
 
+}  // namespace
+
+double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h) {
+  return contactOffsetOn(renderer, tool, h, *probeSurface(h));
+}
+
 double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h) {
-  const double yc = contactOffset(renderer, tool, h);
-  auto s = voxelise(halfSpace({-3e-3, -2e-3, -3e-3}, {3e-3, 1e-3, 3e-3}), h);
+  auto s = probeSurface(h);
+  const double yc = contactOffsetOn(renderer, tool, h, *s);
   auto algorithm = renderer.compile(tool, *s->scene);
   double y = yc + h;
   algorithm->reset(Pose{{0.0, y, 0.0}, {1, 0, 0, 0}});

@@ -1,12 +1,13 @@
 #pragma once
 // PointShell: the paper's point shell of the milled object (Algorithm #3's
-// "MPO"): the centres of its surface voxels with outward normals. A surface
-// voxel is inside (density > iso) with at least one of its six neighbours
-// outside. With scale s > 1 (the paper's reduced resolution) the volume is
-// first reduced over s³ blocks (each coarse voxel takes the densest of its
-// fine voxels, so thin material never vanishes) and the surface voxels of that
-// coarse field are used, each placed at the centroid of its block's material,
-// which gives roughly 1/s² as many points.
+// "MPO"): one point per surface voxel (two for a voxel-thin sheet, one per
+// face), moved from the voxel onto the iso-surface along its outward normal.
+// A surface voxel is inside (density > iso) with at least one of its six
+// neighbours outside. With scale s > 1 (the paper's reduced resolution) the
+// volume is first reduced over s³ blocks (each coarse voxel takes the densest
+// of its fine voxels, so thin material never vanishes) and the surface voxels
+// of that coarse field are used, each starting from the centroid of its
+// block's material, which gives roughly 1/s² as many points.
 //
 // Points are bucketed by blocks of 8³ coarse voxels, and buckets by groups of
 // 4³ (super-buckets), each with a tight bounding box: a box query visits only
