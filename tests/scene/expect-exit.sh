@@ -1,10 +1,61 @@
 #!/bin/sh
-# expect-exit.sh CODE PATTERN COMMAND ARGS...: runs the command and passes when
-# it exits with CODE and its output (stdout and stderr) matches PATTERN (grep -E).
-code=$1 pattern=$2
+# expect-exit.sh [OPTIONS] CODE PATTERN COMMAND ARGS...: runs the command and
+# passes (exit 0) only when it exits with CODE and its output (stdout and
+# stderr together) matches PATTERN (grep -E, any line). Any other outcome exits
+# 1 and says why. ctest must run this WITHOUT PASS_REGULAR_EXPRESSION or
+# FAIL_REGULAR_EXPRESSION: with either property ctest ignores the exit status.
+#
+# OPTIONS (before CODE, repeatable):
+#   -e PATTERN      the output must match this pattern too (grep -E, any line)
+#   --rows FILE N   FILE (a CSV with one header line) is removed before the
+#                   command runs and must then hold at least N data rows
+#   --file FILE     FILE is removed before the command runs and must then exist
+#                   and be non-empty
+# Files are removed first so that a stale file from an earlier run cannot pass.
+patterns=''
+rows=''
+files=''
+nl='
+'
+while :; do
+  case $1 in
+    -e) patterns="$patterns$2$nl"; shift 2 ;;
+    --rows) rows="$rows$2$nl$3$nl"; shift 3 ;;
+    --file) files="$files$2$nl"; shift 2 ;;
+    *) break ;;
+  esac
+done
+if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [--rows FILE N] [--file FILE] CODE PATTERN COMMAND..."; exit 1; fi
+code=$1
+patterns="$2$nl$patterns"
 shift 2
+
+printf '%s' "$files" | while IFS= read -r f; do rm -f -- "$f"; done
+printf '%s' "$rows" | awk 'NR % 2 == 1' | while IFS= read -r f; do rm -f -- "$f"; done
+
 out=$("$@" 2>&1)
 rc=$?
 printf '%s\n' "$out"
-if [ "$rc" -ne "$code" ]; then echo "expect-exit: exit code $rc, expected $code"; exit 1; fi
-if ! printf '%s\n' "$out" | grep -Eq -- "$pattern"; then echo "expect-exit: output does not match '$pattern'"; exit 1; fi
+failed=0
+if [ "$rc" -ne "$code" ]; then echo "expect-exit: exit code $rc, expected $code"; failed=1; fi
+while IFS= read -r p; do
+  [ -z "$p" ] && continue
+  if ! printf '%s\n' "$out" | grep -Eq -- "$p"; then echo "expect-exit: output does not match '$p'"; failed=1; fi
+done <<EOF
+$patterns
+EOF
+while IFS= read -r f && IFS= read -r n; do
+  if [ ! -f "$f" ]; then echo "expect-exit: $f was not written"; failed=1; continue; fi
+  have=$(($(wc -l < "$f") - 1))
+  echo "expect-exit: $f has $have data rows (need $n)"
+  if [ "$have" -lt "$n" ]; then echo "expect-exit: $f has $have data rows, expected at least $n"; failed=1; fi
+done <<EOF
+$rows
+EOF
+while IFS= read -r f; do
+  [ -z "$f" ] && continue
+  if [ ! -s "$f" ]; then echo "expect-exit: $f was not written (or is empty)"; failed=1; fi
+done <<EOF
+$files
+EOF
+exit $failed
