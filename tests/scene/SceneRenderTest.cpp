@@ -224,6 +224,12 @@ TEST_P(SceneRender, DrawsToothToolHoleAndMatchesReference) {
                            << " (allowed fraction " << kMaxDifferingFraction << "), largest difference " << d.maxChannel;
 }
 
+// An empty list would instantiate no SceneRender test at all and ctest would
+// report nothing: x3d/ ships default.x3d and three lessons.
+TEST(SceneRenderHarness, FindsTheShippedScenes) {
+  EXPECT_GE(shippedScenes().size(), 4u) << "scenes found under " MILLSIM_SOURCE_DIR "/x3d";
+}
+
 INSTANTIATE_TEST_SUITE_P(Shipped, SceneRender, ::testing::ValuesIn(shippedScenes()),
                          [](const ::testing::TestParamInfo<std::string>& p) {
                            std::string name = p.param.substr(0, p.param.size() - 4);

@@ -202,8 +202,15 @@ TEST(PointShell, PointsLieOnTheIsoSurface) {
   auto v = ball(48, 15.0);
   for (int scale : {1, 2, 3}) {
     PointShell shell(v, 0.5f, scale);
+    // An empty shell would leave `worst` at 0 and pass.
+    ASSERT_GT(shell.size(), 0u) << "scale " << scale << ": the ball's shell is empty";
     double worst = 0.0;
-    shell.forEach([&](const ShellPoint& p) { worst = std::max(worst, std::abs(glm::length(p.position) / 1e-3 - 15.0)); });
+    std::size_t visited = 0;
+    shell.forEach([&](const ShellPoint& p) {
+      ++visited;
+      worst = std::max(worst, std::abs(glm::length(p.position) / 1e-3 - 15.0));
+    });
+    EXPECT_EQ(visited, shell.size()) << "scale " << scale << ": forEach skipped points";
     // Scale 1: linear interpolation along the normal (voxel centres were up to 1 voxel off);
     // coarser scales start from the block's material.
     EXPECT_LT(worst, scale == 1 ? 0.2 : 0.5) << "scale " << scale << ": voxels off the sphere";
@@ -309,13 +316,20 @@ TEST(BlockChannel, GraphicsReplicaFollowsMillingOnAnotherThread) {
   // The graphics side: drains and reads its replica while milling goes on.
   std::thread graphics([&] {
     VolumeSampler reader(replica.volume());
-    double sink = 0;
+    // The ball's centre (index 32: R = 24 voxels) is never milled (the groove
+    // runs 20–26 voxels out): every read there, while blocks are being applied
+    // around it, must see the material, exactly 1.
+    std::size_t reads = 0, wrong = 0;
+    float wrongValue = 1.f;
     while (!done.load(std::memory_order_acquire)) {
       applied += replica.apply(channel).size();
-      sink += reader.density({32, 32, 32});
+      const float d = reader.density({32, 32, 32});
+      ++reads;
+      if (d != 1.f) ++wrong, wrongValue = d;
     }
     applied += replica.apply(channel).size();
-    EXPECT_GE(sink, 0.0);
+    EXPECT_GT(reads, 0u);
+    EXPECT_EQ(wrong, 0u) << "of " << reads << " reads of the untouched centre, e.g. " << wrongValue;
   });
   // The haptic side: mills a groove around the ball, publishing after every stamp.
   Miller miller(v, 0.5f);
