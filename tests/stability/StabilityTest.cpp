@@ -5,9 +5,12 @@
 // "Soak" are the long versions (ctest label soak); the rest run in CI.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 #include "measure/FallThrough.h"
 #include "measure/Fuzz.h"
@@ -36,29 +39,88 @@ void print(const ScenarioResult& r) {
 }
 
 // Failures these tests exposed in the renderers, reported in docs/stability.md
-// and left for their owners: they are printed as KNOWN, not failed, so that
-// everything else stays guarded. A known issue that stops reproducing is
-// printed too (then remove it here).
-const char* knownIssue(const std::string& type, const Scenario& sc, const HandModel& hand) {
-  // Exposed once HandDevice's integrator stopped damping numerically: Colgate's
-  // passivity bound b > K·T/2 fails for the loose grip (B = 2 N·s/m plus the
-  // device's 1) against #2's springConstant 20 kN/m (K·T/2 = 10 N·s/m) and,
-  // with dropped samples, only just holds for #3's coupling: the contact rings
-  // for seconds (the amplitude falls ~10 % per half second, not the 80 % the
-  // limit-cycle check asks for).
-  if (hand.handDamping <= 2.0 && (type == "SurfacePointRenderer" || type == "BarbicRenderer") &&
-      sc.kind != ScenarioKind::Release)
-    return "a loose grip (B = 2 N·s/m) rings against the contact stiffness for seconds: the Z-width bound "
-           "b > K·T/2 is not met (docs/stability.md)";
-  if (type != "SurfacePointRenderer") return nullptr;
-  if (sc.kind == ScenarioKind::Slide)
-    return "the 24-point lattice is not symmetric about the shaft: a constant sideways force (~1 % of the normal "
-           "force) does work along a slide";
-  if (sc.kind == ScenarioKind::Impact && sc.speed >= 0.3)
-    return "the force saturates near 2.5 N and eq. 17 holds it while the burr centre is inside, so the force "
-           "depends on the path (out can exceed in); a fast impact sinks tens of mm, through the 45 mm block for "
-           "the heavier grips";
-  return nullptr;
+// and left for their owners. Each waiver excuses ONE metric (the failure text's
+// prefix, as runScenario writes it) of one renderer in one scenario (its exact
+// name, "+5%drop" included) for the grips listed (M/B/K as kg, N·s/m, N/m), as
+// measured with `stability_tests --gtest_filter='-*Soak*'` and
+// `--gtest_filter='*SoakPassive*'`. Any other failure of the same run
+// (passivity, non-finite output, release, another metric) still fails the
+// test, and a waived check that passes is printed as
+// "KNOWN ISSUE NO LONGER REPRODUCES" (then remove its grip here).
+struct Waiver {
+  const char* renderer;
+  const char* metric;    // prefix of one failure item, e.g. "limit cycle:"
+  const char* scenario;  // ScenarioResult::scenario
+  const char* grips;     // "M/B/K M/B/K ..."
+  const char* why;
+};
+
+constexpr const char* kRings =
+    "a lightly damped grip (B = 2 N·s/m) rings against the contact stiffness for seconds: the Z-width bound "
+    "b > K·T/2 is not met (docs/stability.md, 4)";
+constexpr const char* kLattice =
+    "the 24-point lattice is not symmetric about the shaft: a constant sideways force (~1 % of the normal force) "
+    "does work along a slide (docs/stability.md, 1)";
+constexpr const char* kSaturates =
+    "the force saturates near 2.5 N and eq. 17 holds it while the burr centre is inside, so the force depends on "
+    "the path (out can exceed in) (docs/stability.md, 2)";
+
+const std::vector<Waiver>& waivers() {
+  static const std::vector<Waiver> w{
+      // SurfacePointRenderer (#2): the lattice's sideways force on slides.
+      {"SurfacePointRenderer", "passivity:", "slide-50mm/s", "0.1/2/1000 0.1/6.5/1000 0.1/10/1000 0.55/6.5/1000 0.55/10/1000", kLattice},
+      {"SurfacePointRenderer", "passivity:", "slide-50mm/s+5%drop", "0.1/2/1000 0.1/6.5/1000 0.1/10/1000 0.55/6.5/1000 0.55/10/1000", kLattice},
+      {"SurfacePointRenderer", "passivity:", "slide-100mm/s",
+       "0.1/2/135 0.1/2/1000 0.1/6.5/135 0.1/6.5/1000 0.1/10/135 0.1/10/1000 0.55/2/500 0.55/2/1000 0.55/6.5/135 "
+       "0.55/6.5/1000 0.55/10/135 0.55/10/1000 0.554/6.45/135", kLattice},
+      {"SurfacePointRenderer", "passivity:", "slide-100mm/s+5%drop",
+       "0.1/2/135 0.1/2/500 0.1/2/1000 0.1/6.5/135 0.1/6.5/1000 0.1/10/135 0.1/10/1000 0.55/2/500 0.55/2/1000 "
+       "0.55/6.5/135 0.55/6.5/1000 0.55/10/135 0.55/10/1000", kLattice},
+      // SurfacePointRenderer (#2): fast impacts.
+      {"SurfacePointRenderer", "passivity:", "impact-0.3m/s", "0.55/6.5/500", kSaturates},
+      {"SurfacePointRenderer", "passivity:", "impact-0.3m/s+5%drop", "0.55/6.5/500", kSaturates},
+      {"SurfacePointRenderer", "passivity:", "impact-1m/s",
+       "0.1/2/135 0.1/2/1000 0.1/6.5/500 0.1/6.5/1000 0.1/10/500 0.1/10/1000 0.55/2/1000 0.55/6.5/500 0.55/10/1000", kSaturates},
+      {"SurfacePointRenderer", "passivity:", "impact-1m/s+5%drop",
+       "0.1/2/135 0.1/2/1000 0.1/6.5/500 0.1/6.5/1000 0.1/10/500 0.1/10/1000 0.55/2/1000 0.55/6.5/500 0.55/10/1000", kSaturates},
+      // SurfacePointRenderer (#2): ringing on B = 2 N·s/m with the stiff (1000 N/m) hand (soak grid only).
+      {"SurfacePointRenderer", "limit cycle:", "static-push", "0.1/2/1000 0.55/2/1000", kRings},
+      {"SurfacePointRenderer", "limit cycle:", "static-push+5%drop", "0.1/2/1000 0.55/2/1000", kRings},
+      {"SurfacePointRenderer", "limit cycle:", "impact-0.1m/s", "0.55/2/1000", kRings},
+      {"SurfacePointRenderer", "limit cycle:", "impact-0.1m/s+5%drop", "0.1/2/1000 0.55/2/1000", kRings},
+      {"SurfacePointRenderer", "limit cycle:", "impact-0.3m/s", "0.55/2/1000", kRings},
+      {"SurfacePointRenderer", "limit cycle:", "impact-0.3m/s+5%drop", "0.1/2/1000 0.55/2/1000", kRings},
+      {"SurfacePointRenderer", "limit cycle:", "impact-1m/s+5%drop", "0.1/2/1000", kRings},
+      // BarbicRenderer (#3): the same ringing, one case of the soak grid, with dropped samples.
+      {"BarbicRenderer", "limit cycle:", "slide-100mm/s+5%drop", "0.55/2/135", kRings},
+  };
+  return w;
+}
+
+bool listsGrip(const char* grips, const HandModel& hand) {
+  std::istringstream in(grips);
+  std::string g;
+  while (in >> g) {
+    double m = 0, b = 0, k = 0;
+    char s1 = 0, s2 = 0;
+    std::istringstream one(g);
+    if (!(one >> m >> s1 >> b >> s2 >> k) || s1 != '/' || s2 != '/') ADD_FAILURE() << "bad grip '" << g << "' in a waiver";
+    if (std::abs(m - hand.handMass) < 1e-9 && std::abs(b - hand.handDamping) < 1e-9 &&
+        std::abs(k - hand.handStiffness) < 1e-9)
+      return true;
+  }
+  return false;
+}
+
+std::vector<std::string> failureItems(const std::string& failure) {
+  std::vector<std::string> items;
+  std::size_t from = 0;
+  while (from < failure.size()) {
+    const std::size_t end = std::min(failure.find("; ", from), failure.size());
+    items.push_back(failure.substr(from, end - from));
+    from = end + 2;
+  }
+  return items;
 }
 
 void expectStable(const std::vector<HandModel>& hands, const std::string& type, double drop, std::uint64_t seed) {
@@ -66,12 +128,30 @@ void expectStable(const std::vector<HandModel>& hands, const std::string& type, 
     for (const Scenario& sc : standardScenarios()) {
       const ScenarioResult r = runScenario({type, {}}, sc, hand, drop, seed);
       print(r);
-      if (const char* known = knownIssue(type, sc, hand); known && !r.passed) {
-        std::cout << "KNOWN ISSUE (" << type << ", " << r.scenario << "): " << known << "\n";
-        continue;
+      ASSERT_EQ(r.passed, r.failure.empty()) << "a failed run must say why: " << r.failure;
+      std::vector<const Waiver*> applicable;
+      for (const Waiver& w : waivers())
+        if (type == w.renderer && r.scenario == w.scenario && listsGrip(w.grips, hand)) applicable.push_back(&w);
+      std::string unexcused;
+      std::set<const Waiver*> used;
+      for (const std::string& item : failureItems(r.failure)) {
+        const auto w = std::find_if(applicable.begin(), applicable.end(),
+                                    [&](const Waiver* a) { return item.rfind(a->metric, 0) == 0; });
+        if (w == applicable.end()) {
+          unexcused += (unexcused.empty() ? "" : "; ") + item;
+          continue;
+        }
+        used.insert(*w);
+        std::cout << "KNOWN ISSUE (" << type << ", " << r.scenario << ", " << r.hand << "): " << item << ": "
+                  << (*w)->why << "\n";
       }
-      EXPECT_TRUE(r.passed) << r.renderer << ", " << r.scenario << ", " << r.hand << " (seed " << seed
-                            << "): " << r.failure;
+      for (const Waiver* w : applicable)
+        if (!used.count(w))
+          std::cout << "KNOWN ISSUE NO LONGER REPRODUCES: " << type << ", " << r.scenario << ", " << r.hand
+                    << ": the '" << w->metric << "' check passed; remove this grip from its waiver in " << __FILE__
+                    << "\n";
+      EXPECT_TRUE(unexcused.empty()) << r.renderer << ", " << r.scenario << ", " << r.hand << " (seed " << seed
+                                     << "): " << unexcused;
     }
 }
 
