@@ -15,6 +15,7 @@
 #include "millsim/haptics/LineProxyRenderer.h"
 #include "millsim/haptics/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
+#include "measure/Renderers.h"
 #include "AnalyticScenes.h"
 
 using namespace millsim;
@@ -75,14 +76,16 @@ TEST(HandDevice, FollowsItsTrajectoryInFreeSpace) {
 TEST(HandDevice, ComesToRestPressingOnASurfaceWithEveryRenderer) {
   // The hand aims 1 mm below the surface: the renderer must hold it there.
   const Trajectory t = line({0, 2e-3, 0}, {0, -1e-3 + 0.0, 0}, 0.5, 3.0);
-  SurfacePointRenderer surfacePoints;
-  LineProxyRenderer lineProxy;
-  for (const HapticsRendererNode* renderer : std::initializer_list<const HapticsRendererNode*>{&surfacePoints, &lineProxy}) {
+  // Every renderer type in the registry, plugins included.
+  const std::vector<std::string> types = measure::registeredRenderers();
+  ASSERT_GE(types.size(), 3u) << "the registry should hold at least the three built-in renderers";
+  for (const std::string& name : types) {
+    const auto renderer = measure::makeRenderer({name, {}});
     VoxelVolume copy = slab();
     HapticScene scene;
     scene.addVolume(copy, glm::dmat4(1.0), kIso);
     const Trace r = runClosedLoop(scene, renderer->compile(kTool, scene), t, HandModel{}, 3.0);
-    const std::string name = renderer->typeName();
+    ASSERT_EQ(r.forces.size(), 3000u) << name;
     // In contact and pushed back: the force balances the grip.
     EXPECT_GT(r.forces.back(), 0.1) << name;
     // No growing oscillation: the motion in the last half second is under a

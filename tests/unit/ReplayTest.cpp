@@ -13,6 +13,7 @@
 #include "millsim/haptics/HapticsDevice.h"
 #include "millsim/haptics/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
+#include "measure/Renderers.h"
 
 using namespace millsim;
 
@@ -91,7 +92,10 @@ TEST(Replay, IsByteIdenticalRunToRun) {
 
 TEST(Replay, EveryRendererReplaysTheSameSceneAndFeelsTheTooth) {
   const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
-  for (const std::string renderer : {"LineProxyRenderer", "SurfacePointRenderer", "BarbicRenderer"}) {
+  // Every renderer type in the registry, plugins included.
+  const std::vector<std::string> renderers = measure::registeredRenderers();
+  ASSERT_GE(renderers.size(), 3u) << "the registry should hold at least the three built-in renderers";
+  for (const std::string& renderer : renderers) {
     const std::string log = replayToString(scene, renderer);
     EXPECT_EQ(log, replayToString(scene, renderer)) << renderer;
     // Some frame has contacts (column 15).
