@@ -13,9 +13,9 @@
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/GraphicsModule.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/haptics/HapticsDevice.h"
-#include "millsim/haptics/Replay.h"
-#include "millsim/haptics/TrajectoryDevice.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/Replay.h"
+#include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/std/Viewpoint.h"
 #include "millsim/x3d/X3DLoader.h"
 

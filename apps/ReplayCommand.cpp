@@ -5,7 +5,7 @@
 
 #include "Commands.h"
 #include "millsim/core/NodeRegistry.h"
-#include "millsim/haptics/Replay.h"
+#include "millsim/run/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
 
 namespace millsim::app {

@@ -18,9 +18,9 @@
 #include "ImageArgs.h"
 #include "RunGraphics.h"
 #include "millsim/core/NodeRegistry.h"
-#include "millsim/haptics/FrameLog.h"
-#include "millsim/haptics/HapticsDevice.h"
-#include "millsim/haptics/RunSetup.h"
+#include "millsim/run/FrameLog.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/RunSetup.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/x3d/X3DLoader.h"
 

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "millsim/haptics/HapticLoop.h"
+#include "millsim/run/HapticLoop.h"
 #include "millsim/haptics/MillTool.h"
 
 namespace millsim {

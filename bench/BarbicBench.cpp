@@ -14,9 +14,9 @@
 #include <memory>
 #include <vector>
 
-#include "millsim/haptics/BarbicRenderer.h"
+#include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/haptics/ToolSdf.h"
+#include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"

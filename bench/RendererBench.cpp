@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/haptics/LineProxyRenderer.h"
-#include "millsim/haptics/SurfacePointRenderer.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/ToothPhantom.h"
 
 using namespace millsim;

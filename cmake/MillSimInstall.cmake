@@ -8,9 +8,9 @@ install(TARGETS millsim EXPORT MillSimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS millsim-app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY ${CMAKE_SOURCE_DIR}/nodes/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/millsim
-        FILES_MATCHING PATTERN "*.h")
-install(DIRECTORY ${CMAKE_SOURCE_DIR}/device/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/millsim/device
+# libmillsim_graphics sits next to libmillsim, where loadGraphicsModule() looks for it.
+install(TARGETS millsim_graphics LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/millsim/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/millsim
         FILES_MATCHING PATTERN "*.h")
 install(EXPORT MillSimTargets NAMESPACE MillSim:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/MillSim)
 

@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include "millsim/haptics/HandDevice.h"
-#include "millsim/haptics/HapticLoop.h"
-#include "millsim/haptics/Trajectory.h"
+#include "millsim/devices/HandDevice.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/devices/Trajectory.h"
 
 namespace millsim::measure {
 

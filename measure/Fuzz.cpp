@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "measure/AnalyticScene.h"
-#include "millsim/haptics/HapticLoop.h"
+#include "millsim/run/HapticLoop.h"
 
 namespace millsim::measure {
 

@@ -5,8 +5,8 @@
 #include <deque>
 #include <vector>
 
-#include "millsim/device/AresDriver.h"
-#include "millsim/device/AresProtocol.h"
+#include "millsim/driver/AresDriver.h"
+#include "millsim/driver/AresProtocol.h"
 
 using namespace millsim;
 

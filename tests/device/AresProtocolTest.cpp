@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-#include "millsim/device/AresProtocol.h"
+#include "millsim/driver/AresProtocol.h"
 
 using namespace millsim::ares;
 

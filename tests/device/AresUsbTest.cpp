@@ -6,7 +6,7 @@
 
 #include <cstdlib>
 
-#include "millsim/haptics/AresDevice.h"
+#include "millsim/devices/AresDevice.h"
 
 using namespace millsim;
 

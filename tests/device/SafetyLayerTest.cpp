@@ -7,7 +7,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "millsim/device/SafetyLayer.h"
+#include "millsim/driver/SafetyLayer.h"
 
 using namespace millsim;
 

@@ -19,9 +19,9 @@
 #include "SceneProbe.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/haptics/HapticsDevice.h"
-#include "millsim/haptics/Replay.h"
-#include "millsim/haptics/TrajectoryDevice.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/Replay.h"
+#include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "millsim/x3d/X3DLoader.h"
 

@@ -10,7 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "millsim/haptics/MillTool.h"
-#include "millsim/haptics/Pose.h"
+#include "millsim/math/Pose.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim::test {

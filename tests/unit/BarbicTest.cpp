@@ -12,10 +12,10 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "millsim/haptics/BarbicRenderer.h"
-#include "millsim/haptics/BarbicSolve.h"
+#include "millsim/renderers/BarbicRenderer.h"
+#include "millsim/renderers/BarbicSolve.h"
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/haptics/ToolSdf.h"
+#include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "AnalyticScenes.h"

@@ -9,11 +9,11 @@
 
 #include <glm/geometric.hpp>
 
-#include "millsim/haptics/HandDevice.h"
-#include "millsim/haptics/HapticLoop.h"
+#include "millsim/devices/HandDevice.h"
+#include "millsim/run/HapticLoop.h"
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/haptics/LineProxyRenderer.h"
-#include "millsim/haptics/SurfacePointRenderer.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "measure/Renderers.h"
 #include "AnalyticScenes.h"

@@ -8,13 +8,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "millsim/haptics/FrameLog.h"
-#include "millsim/haptics/HapticLoop.h"
+#include "millsim/run/FrameLog.h"
+#include "millsim/run/HapticLoop.h"
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/haptics/SpscRing.h"
-#include "millsim/haptics/TripleBuffer.h"
-#include "millsim/haptics/TrajectoryDevice.h"
-#include "millsim/haptics/SurfacePointRenderer.h"
+#include "millsim/run/SpscRing.h"
+#include "millsim/run/TripleBuffer.h"
+#include "millsim/devices/TrajectoryDevice.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/ToothPhantom.h"
 

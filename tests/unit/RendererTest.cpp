@@ -14,9 +14,9 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/haptics/LineProxyRenderer.h"
-#include "millsim/haptics/RendererSwitch.h"
-#include "millsim/haptics/SurfacePointRenderer.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/run/RendererSwitch.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "measure/Renderers.h"
 #include "AnalyticScenes.h"

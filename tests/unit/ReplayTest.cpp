@@ -10,8 +10,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "millsim/core/NodeRegistry.h"
-#include "millsim/haptics/HapticsDevice.h"
-#include "millsim/haptics/Replay.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
 #include "measure/Renderers.h"
 

@@ -1,0 +1,30 @@
+// The explicit list of node types MillSim provides. New node types are added
+// here (or, for integrators, in a plugin's entry point), never by static
+// initialisers.
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/devices/AresDevice.h"
+#include "millsim/renderers/BarbicRenderer.h"
+#include "millsim/devices/HandDevice.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/haptics/MillTool.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/devices/TrajectoryDevice.h"
+#include "millsim/volume/VolumeObject.h"
+
+namespace millsim {
+
+void registerBuiltinNodes(NodeRegistry& r) {
+  registerStandardNodes(r);
+  for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
+                            &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
+                            &HandDevice::type(), &AresDevice::type()})
+    r.add(*t);
+}
+
+NodeRegistry builtinRegistry() {
+  NodeRegistry r;
+  registerBuiltinNodes(r);
+  return r;
+}
+
+}  // namespace millsim

@@ -1,0 +1,67 @@
+#pragma once
+// HapticsDevice: the base of device nodes (AresDevice, HandDevice,
+// TrajectoryDevice). Field names follow H3DAPI's H3DHapticsDevice where they
+// apply. The device holds the tool and the haptics renderer; swapping the
+// renderer element switches the algorithm.
+#include <memory>
+
+#include "millsim/core/NodeKinds.h"
+#include "millsim/driver/DeviceDriver.h"
+#include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/devices/Trajectory.h"
+#include "millsim/haptics/MillTool.h"
+
+namespace millsim {
+
+struct DriverOptions {
+  // Simulated devices: follow this trajectory instead of the one in the
+  // scene (millsim replay --trajectory). Hardware ignores it.
+  const Trajectory* trajectory = nullptr;
+};
+
+class HapticsDevice : public ChildNode {
+public:
+  SFVec3f devicePosition{this, "devicePosition", Access::OutputOnly, glm::vec3(0.f),
+                         "Burr centre position, calibrated, world frame (m)."};
+  SFRotation deviceOrientation{this, "deviceOrientation", Access::OutputOnly, Rotation{},
+                               "Tool orientation, calibrated, world frame."};
+  SFVec3f force{this, "force", Access::OutputOnly, glm::vec3(0.f), "Force last sent to the device (N)."};
+  SFVec3f torque{this, "torque", Access::OutputOnly, glm::vec3(0.f),
+                 "Torque last sent to the device, about the burr centre (N·m)."};
+  SFBool mainButton{this, "mainButton", Access::OutputOnly, false, "Milling switch: true while the burr spins."};
+  SFFloat hapticsRate{this, "hapticsRate", Access::OutputOnly, 0.f, "Measured haptic loop rate (Hz)."};
+  SFTime hapticsLoopTime{this, "hapticsLoopTime", Access::OutputOnly, Time{},
+                         "Compute time of the last haptic frame (s)."};
+  SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
+                             "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
+  SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N).",
+                     Range::positive()};
+  SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m).",
+                      Range::positive()};
+  SFVec3f positionCalibration{this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
+                              "Offset added to the raw device position (m)."};
+  SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
+                                    "Rotation applied to raw device poses (about the world origin)."};
+  SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent."};
+  SFNodeOf<MillTool> tool{this, "tool", Access::InputOutput, "The milling tool the device holds."};
+  SFNodeOf<HapticsRendererNode> hapticsRenderer{this, "hapticsRenderer", Access::InputOutput,
+                                                "The algorithm that computes force and torque."};
+
+  // Raw device pose → calibrated world pose.
+  Pose calibrate(const Pose& raw) const;
+
+  // Opens the haptic thread's side of this device for one run (scene thread).
+  // Throws DeviceError with a message for the user (what was looked for,
+  // what was found) when the device cannot be opened.
+  virtual std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const = 0;
+  // True for simulated devices that follow a trajectory (TrajectoryDevice,
+  // HandDevice): replay hands them its trajectory. A replay of a hardware
+  // device plays the trajectory open loop instead.
+  virtual bool followsTrajectory() const { return false; }
+  // The trajectory a simulated device loaded from its url (null for hardware
+  // or an empty url): what replay and render follow by default.
+  virtual std::shared_ptr<const Trajectory> trajectory() const { return nullptr; }
+  void initialize(DiagnosticSink& sink) override;
+};
+
+}  // namespace millsim

@@ -1,0 +1,128 @@
+#include "millsim/devices/Trajectory.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "millsim/core/FieldValues.h"
+
+namespace millsim {
+
+namespace {
+constexpr const char* kHeader = "t,x,y,z,qw,qx,qy,qz,button";
+
+std::vector<std::string_view> splitCsv(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  while (true) {
+    std::size_t comma = line.find(',', start);
+    std::string_view cell = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    while (!cell.empty() && (cell.front() == ' ' || cell.front() == '\t')) cell.remove_prefix(1);
+    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\t' || cell.back() == '\r')) cell.remove_suffix(1);
+    out.push_back(cell);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+}  // namespace
+
+Trajectory::Trajectory(std::vector<TrajectorySample> samples) : samples_(std::move(samples)) {
+  if (samples_.empty()) throw TrajectoryError("a trajectory needs at least one row");
+}
+
+Trajectory Trajectory::load(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw TrajectoryError(file.string() + ": cannot open the trajectory file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse(ss.str(), file.string());
+}
+
+Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
+  std::vector<TrajectorySample> rows;
+  std::istringstream in(text);
+  std::string line;
+  int lineNo = 0;
+  bool sawHeader = false;
+  const auto expected = splitCsv(kHeader);
+  while (std::getline(in, line)) {
+    ++lineNo;
+    const std::string where = file + ":" + std::to_string(lineNo) + ": ";
+    std::string_view l = line;
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    if (l.find_first_not_of(" \t") == std::string_view::npos || l.front() == '#') continue;
+    auto cells = splitCsv(l);
+    if (!sawHeader) {
+      if (cells.size() < expected.size() || !std::equal(expected.begin(), expected.end(), cells.begin()))
+        throw TrajectoryError(where + "expected the header '" + kHeader + "', found '" + std::string(l) + "'");
+      sawHeader = true;
+      continue;
+    }
+    if (cells.size() < expected.size())
+      throw TrajectoryError(where + "expected " + std::to_string(expected.size()) + " columns (" + kHeader +
+                            "), found " + std::to_string(cells.size()));
+    double v[9];
+    for (int c = 0; c < 9; ++c) {
+      std::string_view cell = cells[std::size_t(c)];
+      if (!cell.empty() && cell.front() == '+') cell.remove_prefix(1);
+      auto [p, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v[c]);
+      if (cell.empty() || ec != std::errc() || p != cell.data() + cell.size())
+        throw TrajectoryError(where + "column '" + std::string(expected[std::size_t(c)]) + "' is not a number: '" +
+                              std::string(cells[std::size_t(c)]) + "'");
+      if (!std::isfinite(v[c]))
+        throw TrajectoryError(where + "column '" + std::string(expected[std::size_t(c)]) +
+                              "' is not finite: '" + std::string(cells[std::size_t(c)]) + "'");
+    }
+    TrajectorySample s;
+    s.t = v[0];
+    s.pose.position = glm::dvec3(v[1], v[2], v[3]);
+    glm::dquat q(v[4], v[5], v[6], v[7]);
+    const double norm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
+    if (std::abs(norm - 1.0) > 1e-3)
+      throw TrajectoryError(where + "the quaternion (qw,qx,qy,qz) has length " + formatNumber(norm) +
+                            "; expected a unit quaternion");
+    s.pose.orientation = q / norm;
+    if (v[8] != 0.0 && v[8] != 1.0)
+      throw TrajectoryError(where + "column 'button' must be 0 or 1, found '" + std::string(cells[8]) + "'");
+    s.button = v[8] == 1.0;
+    if (!rows.empty() && !(s.t > rows.back().t))
+      throw TrajectoryError(where + "time " + formatNumber(s.t) + " does not increase (previous row: " +
+                            formatNumber(rows.back().t) + ")");
+    rows.push_back(s);
+  }
+  if (!sawHeader) throw TrajectoryError(file + ": empty trajectory; expected the header '" + kHeader + "'");
+  if (rows.empty()) throw TrajectoryError(file + ": the trajectory has a header but no rows");
+  return Trajectory(std::move(rows));
+}
+
+TrajectorySample Trajectory::at(double t) const {
+  if (t <= samples_.front().t) return samples_.front();
+  if (t >= samples_.back().t) return samples_.back();
+  auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
+                             [](double x, const TrajectorySample& s) { return x < s.t; });
+  const TrajectorySample& b = *it;
+  const TrajectorySample& a = *(it - 1);
+  const double u = (t - a.t) / (b.t - a.t);
+  TrajectorySample out;
+  out.t = t;
+  out.pose.position = a.pose.position + (b.pose.position - a.pose.position) * u;
+  out.pose.orientation = glm::normalize(glm::slerp(a.pose.orientation, b.pose.orientation, u));
+  out.button = a.button;
+  return out;
+}
+
+std::string Trajectory::toCsv() const {
+  std::string s = std::string(kHeader) + "\n";
+  for (const auto& r : samples_) {
+    const auto& p = r.pose.position;
+    const auto& q = r.pose.orientation;
+    for (double v : {r.t, p.x, p.y, p.z, q.w, q.x, q.y, q.z}) s += formatNumber(v) + ",";
+    s += r.button ? "1\n" : "0\n";
+  }
+  return s;
+}
+
+}  // namespace millsim

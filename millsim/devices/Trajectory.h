@@ -1,0 +1,46 @@
+#pragma once
+// A device trajectory: the replay CSV format
+//   t,x,y,z,qw,qx,qy,qz,button
+// t in seconds (strictly increasing), the burr centre in metres (world frame),
+// a unit quaternion (w first), button 0/1 (milling on). Poses between rows are
+// interpolated (linear position, slerp orientation); the button holds the
+// value of the row at or before t.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "millsim/math/Pose.h"
+
+namespace millsim {
+
+// A malformed trajectory: the message names the file and line.
+struct TrajectoryError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct TrajectorySample {
+  double t = 0.0;
+  Pose pose;
+  bool button = false;
+};
+
+class Trajectory {
+public:
+  static Trajectory load(const std::filesystem::path& file);
+  static Trajectory parse(const std::string& text, const std::string& fileLabel);
+  explicit Trajectory(std::vector<TrajectorySample> samples);
+
+  double startTime() const { return samples_.front().t; }
+  double endTime() const { return samples_.back().t; }
+  TrajectorySample at(double t) const;
+  const std::vector<TrajectorySample>& samples() const { return samples_; }
+
+  // Writes the CSV format (shortest round-trip numbers).
+  std::string toCsv() const;
+
+private:
+  std::vector<TrajectorySample> samples_;
+};
+
+}  // namespace millsim

@@ -1,0 +1,106 @@
+#pragma once
+// SceneRenderer: draws a MillSim scene offscreen with OpenGL (3.3 core on
+// OSMesa/llvmpipe): each volume's iso-surface (incrementally re-meshed as it
+// is milled), the standard Shapes, the tool at its drawn pose and Algorithm
+// #1's intersection point as a small red sphere, seen from the scene's
+// Viewpoint over its Background, cut by its ClipPlanes.
+//
+// Threads: a renderer owns a GL context, which is current on one thread. Create
+// it, call it and destroy it on the same thread (the graphics thread of a live
+// run). It reads the Scene only in createSceneRenderer(); afterwards it reads
+// only the voxels it meshes, in build and volumeChanged() — so in a live run
+// pass the graphics side's VolumeReplica volumes, never the haptic thread's.
+//
+// Live use (graphics thread):
+//   RendererOptions o;  o.voxels = {&replica.volume()};      // one per scene volume
+//   auto r = createSceneRenderer(scene, o);                  // meshes everything (≈60 ms)
+//   loop: r->volumeChanged(0, replica.apply(channel));       // remesh + upload changed chunks only
+//         r->render(toolView(tool, latestOutput));  r->readPixels() (or not)
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <openvdb/openvdb.h>
+
+#include "millsim/graphics/Image.h"
+#include "millsim/graphics/SceneView.h"
+#include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/haptics/MillTool.h"
+#include "millsim/math/Pose.h"
+
+namespace millsim {
+
+class Scene;
+class VoxelVolume;
+
+// What to draw of the tool: burr sphere at pose.position, shaft along the
+// pose's +Y, and the red intersection marker if there is one (drawn over
+// everything, since it lies where the shaft enters the tooth).
+struct ToolView {
+  ToolGeometry geometry;
+  Pose pose;
+  bool hasIntersection = false;
+  glm::dvec3 intersection{0.0};
+};
+inline ToolView toolView(const ToolGeometry& g, const HapticOutput& out) {
+  return {g, out.drawnTool, out.hasIntersection, out.intersection};
+}
+
+struct RendererOptions {
+  int width = 512, height = 512;
+  std::string viewpoint;  // DEF name of the Viewpoint to look through; empty: the first one
+  // Voxels to mesh in place of each scene VolumeObject's own, in HapticScene's
+  // order (e.g. VolumeReplica volumes in a live run). Empty: the objects' own.
+  std::vector<const VoxelVolume*> voxels;
+};
+
+struct RendererStats {
+  std::size_t triangles = 0;     // of all volume meshes
+  std::size_t chunks = 0;        // chunk meshes on the GPU
+  std::size_t chunkUploads = 0;  // since construction (an incremental update adds only the chunks it touched)
+};
+
+class SceneRenderer {
+public:
+  virtual ~SceneRenderer() = default;
+
+  // Adds and meshes another volume (not from the scene); returns its index.
+  virtual std::size_t addVolume(const VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso) = 0;
+  virtual std::size_t volumeCount() const = 0;
+  // The listed 8³ blocks (origins, as VolumeReplica::apply and DirtyBlocks give
+  // them) of volume `index` changed: re-mesh and re-upload the chunks they touch.
+  virtual void volumeChanged(std::size_t index, const std::vector<openvdb::Coord>& blocks) = 0;
+  // Re-meshes a whole volume (when which blocks changed is not known).
+  virtual void rebuildVolume(std::size_t index) = 0;
+
+  // Camera: starts as the scene's Viewpoint; set it to zoom or rotate.
+  virtual void setView(const ViewSpec& view) = 0;
+  virtual ViewSpec view() const = 0;
+  // The camera of the latest render() (near and far follow the scene and tool).
+  virtual Camera camera() const = 0;
+
+  // Draws one frame; without a tool, draws the scene alone.
+  virtual void render(const std::optional<ToolView>& tool) = 0;
+  // The latest frame: colour (rows from the top) and depth in [0, 1] (rows from the top).
+  virtual Image readPixels() = 0;
+  virtual std::vector<float> readDepth() = 0;
+
+  virtual RendererStats stats() const = 0;
+  virtual std::string glDescription() const = 0;  // GL version and renderer
+};
+
+// Reads the scene (SceneView) and meshes its volumes. Throws GraphicsError
+// (bad size, no usable OSMesa context, shader failure) and std::invalid_argument
+// (no Viewpoint of that DEF name; options.voxels of the wrong length or with a
+// different shape than the object's).
+std::unique_ptr<SceneRenderer> createSceneRenderer(const Scene& scene, const RendererOptions& options = {});
+
+// Writes an image as an 8-bit RGBA PNG (libpng). Throws GraphicsError naming
+// the path when it cannot be written.
+void writePng(const Image& image, const std::filesystem::path& path);
+
+}  // namespace millsim

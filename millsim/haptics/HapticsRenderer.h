@@ -1,0 +1,69 @@
+#pragma once
+// The haptic renderer interface. A renderer node (LineProxyRenderer,
+// SurfacePointRenderer, BarbicRenderer, or a plugin's) sits in a device's
+// `hapticsRenderer` field; swapping that one element switches the algorithm.
+//
+// The node holds parameters as fields. For a run, it compiles them, with the
+// tool's geometry, into a HapticAlgorithm: parameters fixed, state of its own.
+// One step is a function of (scene snapshot, algorithm state, device pose, dt),
+// so replays are bit-reproducible.
+#include <memory>
+#include <string>
+
+#include "millsim/core/Node.h"
+#include "millsim/haptics/MillTool.h"
+#include "millsim/math/Pose.h"
+
+namespace millsim {
+
+class HapticScene;
+
+struct HapticInput {
+  Pose device;       // burr centre and tool orientation, world frame
+  double dt = 1e-3;  // seconds since the previous step
+  bool milling = false;  // the burr spins this frame (the device's main button)
+};
+
+struct HapticOutput {
+  glm::dvec3 force{0.0};   // N, world frame, on the user's hand
+  glm::dvec3 torque{0.0};  // N·m, world frame, about the burr centre
+  Pose drawnTool;          // where graphics should draw the tool
+  int contacts = 0;        // colliding vertices / points this frame
+  bool hasIntersection = false;
+  glm::dvec3 intersection{0.0};  // Algorithm #1's shaft intersection point
+  bool hasProxy = false;
+  glm::dvec3 proxy{0.0};  // the constrained tip (or coupled tool) position
+  std::uint32_t flags = 0;  // see HapticFlags
+  // Where the burr cuts when milling is on, and whether it may cut this frame.
+  // Renderers set this to the burr they draw (see docs/algorithms.md, Milling position).
+  bool burrCuts = true;
+  glm::dvec3 burrCentre{0.0};
+};
+
+// Events worth logging, as bits of HapticOutput::flags.
+enum HapticFlags : std::uint32_t {
+  kFlagNonFiniteSuppressed = 1u << 0,  // the algorithm produced NaN/Inf; output zeroed
+  kFlagHeldForce = 1u << 1,            // a hold rule (paper eq. 17/19) applied
+  kFlagCoarseFallback = 1u << 2,       // the time/contact budget forced a coarser level
+};
+
+class HapticAlgorithm {
+public:
+  virtual ~HapticAlgorithm() = default;
+  // Forget all history; the next step starts from this device pose.
+  virtual void reset(const Pose& device) = 0;
+  virtual HapticOutput step(HapticScene& scene, const HapticInput& in) = 0;
+  virtual std::string name() const = 0;
+};
+
+class HapticsRendererNode : public Node {
+public:
+  static constexpr std::string_view kindName = "a haptics renderer (LineProxyRenderer, SurfacePointRenderer, ...)";
+  virtual std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const = 0;
+};
+
+// Replaces NaN/Inf in an output with zero force and torque and flags it: no
+// non-finite value ever leaves a renderer.
+void sanitize(HapticOutput& out, const Pose& device);
+
+}  // namespace millsim

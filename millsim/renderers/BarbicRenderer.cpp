@@ -1,0 +1,257 @@
+#include "millsim/renderers/BarbicRenderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include "millsim/renderers/BarbicSolve.h"
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/renderers/Obb.h"
+#include "millsim/renderers/ToolSdf.h"
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/VolumeObject.h"
+
+namespace millsim {
+
+namespace {
+
+struct BarbicParams {
+  int scale;
+  double contactK, feedResistance, maxStep;
+  Coupling coupling;
+  bool sampled, culling;
+  std::size_t maxTested, maxContacts;
+};
+
+class BarbicAlgorithm final : public HapticAlgorithm {
+public:
+  BarbicAlgorithm(const BarbicParams& p, const ToolGeometry& tool, double sdfVoxel, HapticScene& scene)
+      : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.tipRadius)) {
+    // Shells live on the VolumeObject (shared, built once) or, for volumes
+    // added without a node, here. Built on the scene thread, not in step().
+    for (std::size_t i = 0; i < scene.volumeCount(); ++i) {
+      auto& v = scene.volume(i);
+      Shells s;
+      s.volume = &v;
+      s.epoch = v.millEpoch;
+      s.fine = shell(v, p.scale, s.ownedFine);
+      s.coarse = shell(v, 2 * p.scale, s.ownedCoarse);
+      shells_.push_back(std::move(s));
+    }
+  }
+
+  std::string name() const override { return "BarbicRenderer"; }
+
+  void reset(const Pose& device) override {
+    tool_ = isFinite(device) ? device : Pose{};
+    lastDevice_ = tool_;
+    toolVelocity_.setZero();
+    cutting_ = false;
+  }
+
+  HapticOutput step(HapticScene& scene, const HapticInput& in) override {
+    HapticOutput out;
+    if (!isFinite(in.device)) {  // a bad pose changes nothing: hold the tool, feel nothing
+      out.drawnTool = tool_;
+      out.hasProxy = true, out.proxy = tool_.position, out.burrCentre = tool_.position, out.burrCuts = false;
+      return out;
+    }
+    const Pose device{in.device.position, glm::normalize(in.device.orientation)};
+    const double dt = in.dt > 1e-6 && std::isfinite(in.dt) ? in.dt : 1e-3;
+    followMilling(scene);
+
+    // 1–2. Contacts at the current tool pose, and the coupling spring.
+    acc_.clear();
+    addCouplingSpring(acc_, p_.coupling, tool_, device);
+    out.contacts = gatherContacts(out.flags);
+
+    // 3. The 6×6 solve (quasi-static: net wrench zero after the step).
+    Vec6 deviceVelocity;
+    const glm::dvec3 vd = (device.position - lastDevice_.position) / dt;
+    const glm::dvec3 wd = rotationError(lastDevice_.orientation, device.orientation) / dt;
+    deviceVelocity << vd.x, vd.y, vd.z, wd.x, wd.y, wd.z;
+    SolveResult solved = solveStep(acc_, p_.coupling, deviceVelocity, dt);
+    Vec6 step = solved.step;
+
+    // Never tunnel: a step longer than maxStep is cut to maxStep if any shell
+    // point lies within the box the tool sweeps.
+    const double sweep = step.head<3>().norm() + step.tail<3>().norm() * reach_;
+    if (sweep > p_.maxStep && materialWithin(sweep)) step *= p_.maxStep / sweep;
+    tool_ = applyStep(tool_, step);
+    Vec6 toolVelocity = step / dt;
+    if (!isFinite(tool_)) tool_ = device, toolVelocity.setZero();
+
+    // 4. What the user feels: the coupling between the new tool pose and the device.
+    const glm::dvec3 vt(toolVelocity(0), toolVelocity(1), toolVelocity(2));
+    const glm::dvec3 wt(toolVelocity(3), toolVelocity(4), toolVelocity(5));
+    out.force = p_.coupling.k * (tool_.position - device.position) + p_.coupling.b * (vt - vd);
+    out.torque = -p_.coupling.kr * rotationError(tool_.orientation, device.orientation) + p_.coupling.br * (wt - wd);
+    out.drawnTool = tool_;
+    out.hasProxy = true;
+    out.proxy = tool_.position;
+    // Milling: the burr cuts where it is drawn, advanced towards the device at
+    // the feed speed |F| / feedResistance, never past the device. The advance
+    // accumulates while the button is held (measured from the current tool
+    // pose, so a tool that follows the receding surface does not double it):
+    // the coverage stamp is idempotent, and one frame's feed alone never gets
+    // past the thin layer the first stamp removed (docs/algorithms.md).
+    const glm::dvec3 toDevice = device.position - tool_.position;
+    const double gap = glm::length(toDevice);
+    out.burrCentre = tool_.position;
+    if (in.milling && gap > 0.0) {
+      const glm::dvec3 dir = toDevice / gap;
+      const double previous = cutting_ ? std::max(0.0, glm::dot(cutCentre_ - tool_.position, dir)) : 0.0;
+      const double depth = std::min(previous + glm::length(out.force) / p_.feedResistance * dt, gap);
+      out.burrCentre = tool_.position + dir * depth;
+    }
+    cutting_ = in.milling;
+    cutCentre_ = out.burrCentre;
+    out.burrCuts = true;
+    lastDevice_ = device;
+    toolVelocity_ = toolVelocity;
+    sanitize(out, device);
+    return out;
+  }
+
+private:
+  struct Shells {
+    HapticScene::Volume* volume = nullptr;
+    PointShell* fine = nullptr;
+    PointShell* coarse = nullptr;
+    std::unique_ptr<PointShell> ownedFine, ownedCoarse;
+    std::uint64_t epoch = 0;
+  };
+
+  static PointShell* shell(HapticScene::Volume& v, int scale, std::unique_ptr<PointShell>& owned) {
+    if (v.node) {
+      const bool existed = v.node->hasPointShell(scale);
+      PointShell& s = v.node->pointShell(scale);
+      if (existed) s.rebuildAll(*v.voxels);  // it may have missed milling while no renderer used it
+      return &s;
+    }
+    owned = std::make_unique<PointShell>(*v.voxels, float(v.iso), scale);
+    return owned.get();
+  }
+
+  // The shells follow milling inside the haptic frame: one mill() call since
+  // the last frame is merged from its changed voxels; more than one (frames
+  // without a step) forces a full rebuild, which is slow but never wrong.
+  void followMilling(HapticScene&) {
+    for (Shells& s : shells_) {
+      const auto& v = *s.volume;
+      if (v.millEpoch == s.epoch) continue;
+      for (PointShell* sh : {s.fine, s.coarse}) {
+        if (v.millEpoch == s.epoch + 1) sh->update(*v.voxels, v.changed);
+        else sh->rebuildAll(*v.voxels);
+      }
+      s.epoch = v.millEpoch;
+    }
+  }
+
+  // The tool's oriented bounding box in a volume's local frame, grown by `margin` (world m).
+  Obb toolBox(const HapticScene::Volume& v, const Pose& tool, double margin) const {
+    const glm::dmat3 R = glm::mat3_cast(tool.orientation);
+    const glm::dvec3 lo = sdf_.boxLo() - margin, hi = sdf_.boxHi() + margin;
+    const glm::dmat3 lin(v.worldToLocal);
+    Obb b;
+    b.centre = glm::dvec3(v.worldToLocal * glm::dvec4(tool.position + R * ((lo + hi) * 0.5), 1.0));
+    for (int i = 0; i < 3; ++i) b.axis[i] = glm::normalize(lin * R[i]);
+    b.half = (hi - lo) * 0.5 / v.worldPerLocal;
+    return b;
+  }
+
+  // Penalty contacts of every shell point inside the tool, into acc_. Uses
+  // the coarse shell when the fine one would exceed the budgets.
+  int gatherContacts(std::uint32_t& flags) {
+    const glm::dmat3 R = glm::mat3_cast(tool_.orientation), Rt = glm::transpose(R);
+    int contacts = 0;
+    for (const Shells& s : shells_) {
+      const auto& v = *s.volume;
+      const Obb box = toolBox(v, tool_, 0.0);
+      auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
+      const PointShell* shell = s.fine;
+      if (p_.culling && shell->countCandidates(overlaps) > p_.maxTested) shell = s.coarse, flags |= kFlagCoarseFallback;
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        const double k = p_.contactK * double(shell->scale() * shell->scale());
+        const Wrench6 before = acc_;
+        int n = 0;
+        bool full = false;
+        auto test = [&](const ShellPoint& sp) {
+          if (full) return;
+          const glm::dvec3 pw = glm::dvec3(v.localToWorld * glm::dvec4(glm::dvec3(sp.position), 1.0));
+          const glm::dvec3 r = pw - tool_.position;
+          const glm::dvec3 q = Rt * r;
+          const double d = p_.sampled ? sdf_.sampledDistance(q) : sdf_.distance(q);
+          if (!(d < 0.0)) return;
+          const SdfSample sm = p_.sampled ? sdf_.sampled(q) : sdf_.analytic(q, true);
+          addContact(acc_, r, sm.distance, R * sm.gradient, R * sm.hessian * Rt, k);
+          full = ++n >= int(p_.maxContacts);
+        };
+        if (p_.culling) shell->forEachCandidate(overlaps, test);
+        else shell->forEach(test);
+        if (full && shell == s.fine && s.coarse != s.fine) {
+          acc_ = before;  // too many contacts: redo with the coarse shell
+          shell = s.coarse;
+          flags |= kFlagCoarseFallback;
+          continue;
+        }
+        if (full) flags |= kFlagCoarseFallback;  // still too many: contacts past the budget were left out
+        contacts += n;
+        break;
+      }
+    }
+    return contacts;
+  }
+
+  // Whether any shell point lies within `margin` of the tool's box.
+  bool materialWithin(double margin) const {
+    for (const Shells& s : shells_) {
+      const Obb box = toolBox(*s.volume, tool_, margin);
+      if (s.fine->anyCandidate([&](const Aabb& b) { return box.overlaps(b); },
+                               [&](const ShellPoint& p) { return box.contains(glm::dvec3(p.position)); }))
+        return true;
+    }
+    return false;
+  }
+
+  BarbicParams p_;
+  ToolSdf sdf_;
+  double reach_;
+  std::vector<Shells> shells_;
+  Wrench6 acc_;
+  Pose tool_, lastDevice_;
+  Vec6 toolVelocity_ = Vec6::Zero();
+  bool cutting_ = false;        // the burr cut last frame, at cutCentre_
+  glm::dvec3 cutCentre_{0.0};
+};
+
+}  // namespace
+
+const NodeType& BarbicRenderer::type() {
+  static const NodeType t = makeNodeType<BarbicRenderer>(
+      "BarbicRenderer", "hapticsRenderer", "MillSim haptics",
+      "Algorithm #3: tool distance field against the object's point shell, virtual coupling and a 6×6 "
+      "quasi-static solve (Barbič & James 2008).");
+  return t;
+}
+
+std::unique_ptr<HapticAlgorithm> BarbicRenderer::compile(const ToolGeometry& tool, HapticScene& scene) const {
+  BarbicParams p;
+  p.scale = pointShellScale.get();
+  p.contactK = contactStiffness.get();
+  p.feedResistance = feedResistance.get();
+  p.maxStep = maxStep.get();
+  p.coupling = Coupling{couplingStiffness.get(), couplingDamping.get(), angularCouplingStiffness.get(),
+                        angularCouplingDamping.get()};
+  p.sampled = sampledSdf.get();
+  p.culling = culling.get();
+  p.maxTested = std::size_t(maxTestedPoints.get());
+  p.maxContacts = std::size_t(maxContacts.get());
+  return std::make_unique<BarbicAlgorithm>(p, tool, double(sdfVoxelSize.get()), scene);
+}
+
+}  // namespace millsim

@@ -1,0 +1,249 @@
+#include "millsim/renderers/LineProxyRenderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/renderers/ProxyPoint.h"
+
+namespace millsim {
+
+namespace {
+
+class LineProxyAlgorithm final : public HapticAlgorithm {
+public:
+  struct Params {
+    int vertices;
+    int translationSteps;
+    int rotationSteps;
+    double k;
+    double feedResistance;
+    ToolGeometry tool;
+  };
+
+  LineProxyAlgorithm(const Params& p, int proxyIterations)
+      : p_(p),
+        tip_(ProxyPoint::Params{proxyIterations, 2.0}),
+        shaft_(ProxyPoint::Params{proxyIterations, 2.0}),
+        before_(std::size_t(p.vertices)),
+        after_(std::size_t(p.vertices)) {
+    // Shaft vertices inside the burr sphere are the burr's to feel: one there
+    // would "collide" with the wall of the burr's own hole, and the drawn shaft,
+    // offset by its radius from an intersection closer to the tip than that
+    // radius, would swing tens of degrees (seen in the §8.2 procedure).
+    while (firstShaftVertex_ < p.vertices - 1 &&
+           p.tool.shaftLength * double(firstShaftVertex_) / double(p.vertices - 1) < p.tool.tipRadius)
+      ++firstShaftVertex_;
+  }
+
+  std::string name() const override { return "LineProxyRenderer"; }
+
+  void reset(const Pose& device) override {
+    tip_.reset(device.position);
+    shaft_.reset(device.position);
+    prevTip_ = device.position;
+    cutting_ = false;
+    prevDir_ = device.shaftDirection();
+    shaftContact_ = false;
+    lastDrawn_ = device;
+  }
+
+  HapticOutput step(HapticScene& scene, const HapticInput& in) override {
+    HapticOutput out;
+    const Pose& device = in.device;
+    if (!isFinite(device)) {
+      out.drawnTool = lastDrawn_;  // a bad pose changes nothing and draws the last good one
+      return out;
+    }
+    out.drawnTool = device;
+    const glm::dvec3 c = device.position;
+    const glm::dvec3 dir = device.shaftDirection();
+
+    // §4.2 and eq. 6: the burr centre vertex and its proxy.
+    tip_.update(scene, c);
+    const bool tipContact = tip_.inContact();
+    const glm::dvec3 proxyPoint = tipContact ? tip_.position() : c;
+    if (tipContact) {
+      out.force = p_.k * (proxyPoint - c);
+      out.hasProxy = true;
+      out.proxy = proxyPoint;
+      out.contacts = 1;
+    }
+
+    // The shaft, translated to the tip's proxy (t_offset in Fig. 6).
+    int colliding = 0;
+    double deepest = 0.0;
+    glm::dvec3 deepestVertex(0.0);
+    for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
+      const glm::dvec3 v = vertex(proxyPoint, dir, i);
+      const double s = scene.field(v);
+      if (s > 0.0) {
+        ++colliding;
+        if (s > deepest) deepest = s, deepestVertex = v;
+      }
+    }
+    if (colliding == 0) {
+      shaftContact_ = false;
+    } else if (!shaftContact_) {
+      // §4.3.1: no collision at t−1: the fraction method along the motion.
+      glm::dvec3 ip;
+      if (!firstContact(scene, prevTip_, prevDir_, proxyPoint, dir, ip)) ip = deepestVertex;
+      shaft_.placeInContact(ip);
+      shaftContact_ = true;
+    } else {
+      // §4.3.2: collision at t−1: the deepest vertex is the probe of the
+      // probe–proxy algorithm, the last intersection point its proxy.
+      shaft_.update(scene, deepestVertex);
+    }
+
+    if (shaftContact_) {
+      const glm::dvec3 ip = shaft_.position();
+      const glm::dvec3 r = ip - proxyPoint;                                    // eq. 7
+      const glm::dvec3 ipProbe = proxyPoint + glm::length(r) * dir;            // eq. 8
+      const glm::dvec3 g = ip - ipProbe;                                       // eq. 9
+      const glm::dvec3 reaction = p_.k * g;                                    // eq. 10
+      out.torque = glm::cross(r, reaction);                                    // eq. 11
+      out.hasIntersection = true;
+      out.intersection = ip;
+      out.contacts += colliding;
+    }
+
+    // §4.5, eq. 12–13: draw the tool offset by the radii along the normals.
+    glm::dvec3 drawTip = c;
+    if (tipContact) drawTip = proxyPoint + scene.outwardNormal(proxyPoint) * p_.tool.tipRadius;
+    glm::dvec3 drawDir = dir;
+    if (shaftContact_) {
+      const glm::dvec3 ipOffset = out.intersection + scene.outwardNormal(out.intersection) * p_.tool.shaftRadius;
+      const glm::dvec3 axis = ipOffset - drawTip;
+      if (glm::length(axis) > 1e-9) drawDir = glm::normalize(axis);
+    }
+    out.drawnTool.position = drawTip;
+    out.drawnTool.orientation = rotationBetween(dir, drawDir) * device.orientation;
+    // Only the burr of a tip in contact cuts: a free burr is drawn at the
+    // device, where it overlaps material its centre vertex cannot feel, and
+    // cutting there would clear the surface before the proxy ever met it. In
+    // contact the burr advances into the surface at the feed speed
+    // |F| / feedResistance, never deeper than the probe.
+    // The advance accumulates while milling: the coverage stamp is
+    // idempotent, so a burr that only ever reached one frame's feed past the
+    // tangent position would stop cutting once that thin layer is gone.
+    out.burrCuts = tipContact;
+    out.burrCentre = drawTip;
+    // Depth is measured from the current tangent position, so when the
+    // proxy follows the receding surface the burr does not advance twice.
+    if (tipContact && in.milling) {
+      const glm::dvec3 n = scene.outwardNormal(proxyPoint);
+      const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
+      const double feed = glm::length(out.force) / p_.feedResistance * in.dt;
+      const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
+      out.burrCentre = drawTip - n * depth;
+      cutCentre_ = out.burrCentre;
+      cutting_ = true;
+    } else {
+      cutting_ = false;
+    }
+
+    prevTip_ = proxyPoint;
+    prevDir_ = dir;
+    sanitize(out, device);
+    lastDrawn_ = out.drawnTool;
+    return out;
+  }
+
+private:
+  glm::dvec3 vertex(const glm::dvec3& tip, const glm::dvec3& dir, int i) const {
+    return tip + dir * (p_.tool.shaftLength * double(i) / double(p_.vertices - 1));
+  }
+
+  // Samples the shaft vertices of a line into `values`; true if any collides.
+  bool sample(const HapticScene& scene, const glm::dvec3& tip, const glm::dvec3& dir, std::vector<double>& values) const {
+    bool any = false;
+    for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
+      values[std::size_t(i)] = scene.field(vertex(tip, dir, i));
+      any |= values[std::size_t(i)] > 0.0;
+    }
+    return any;
+  }
+
+  // Eq. 1–2 between two consecutive search poses: the most active vertex (the
+  // smallest density fraction) gives the intersection point.
+  glm::dvec3 intersection(const glm::dvec3& tipA, const glm::dvec3& dirA, const glm::dvec3& tipB,
+                          const glm::dvec3& dirB) const {
+    double best = 2.0;
+    glm::dvec3 ip(0.0);
+    for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
+      const double a = before_[std::size_t(i)], b = after_[std::size_t(i)];
+      if (b <= 0.0) continue;  // not active
+      const double fraction = a >= 0.0 ? 0.0 : std::clamp((0.0 - a) / (b - a), 0.0, 1.0);
+      if (fraction < best) {
+        best = fraction;
+        ip = vertex(tipA, dirA, i) * (1.0 - fraction) + vertex(tipB, dirB, i) * fraction;
+      }
+    }
+    return ip;
+  }
+
+  // §4.3.1, Fig. 6: translate step by step from t−1 to t (eq. 3), then rotate
+  // step by step (eq. 4), stopping at the first step where a vertex collides.
+  bool firstContact(const HapticScene& scene, const glm::dvec3& fromTip, const glm::dvec3& fromDir,
+                    const glm::dvec3& toTip, const glm::dvec3& toDir, glm::dvec3& ip) {
+    sample(scene, fromTip, fromDir, before_);
+    const glm::dvec3 d = toTip - fromTip;
+    glm::dvec3 tipA = fromTip;
+    for (int n = 1; n <= p_.translationSteps; ++n) {
+      const glm::dvec3 tipB = fromTip + d * (double(n) / p_.translationSteps);
+      if (sample(scene, tipB, fromDir, after_)) {
+        ip = intersection(tipA, fromDir, tipB, fromDir);
+        return true;
+      }
+      std::swap(before_, after_);
+      tipA = tipB;
+    }
+    const glm::dquat q = rotationBetween(fromDir, toDir);
+    glm::dvec3 dirA = fromDir;
+    for (int n = 1; n <= p_.rotationSteps; ++n) {
+      const glm::dvec3 dirB =
+          glm::normalize(glm::slerp(glm::dquat(1, 0, 0, 0), q, double(n) / p_.rotationSteps) * fromDir);
+      if (sample(scene, toTip, dirB, after_)) {
+        ip = intersection(toTip, dirA, toTip, dirB);
+        return true;
+      }
+      std::swap(before_, after_);
+      dirA = dirB;
+    }
+    return false;
+  }
+
+  Params p_;
+  int firstShaftVertex_ = 1;  // the first vertex above the burr sphere
+  ProxyPoint tip_;
+  ProxyPoint shaft_;
+  glm::dvec3 prevTip_{0.0};
+  bool cutting_ = false;        // the burr cut last frame, at cutCentre_
+  glm::dvec3 cutCentre_{0.0};
+  glm::dvec3 prevDir_{0.0, 1.0, 0.0};
+  bool shaftContact_ = false;
+  Pose lastDrawn_;
+  std::vector<double> before_, after_;  // vertex values at search steps n−1 and n (preallocated)
+};
+
+}  // namespace
+
+const NodeType& LineProxyRenderer::type() {
+  static const NodeType t = makeNodeType<LineProxyRenderer>(
+      "LineProxyRenderer", "hapticsRenderer", "MillSim haptics",
+      "Algorithm #1: proxy-based force and torque with the tool as a line of vertices.");
+  return t;
+}
+
+std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
+  return std::make_unique<LineProxyAlgorithm>(
+      LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
+                                 double(springConstant.get()), double(feedResistance.get()), tool},
+      proxyIterations.get());
+}
+
+}  // namespace millsim

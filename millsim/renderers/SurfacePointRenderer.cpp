@@ -1,0 +1,146 @@
+#include "millsim/renderers/SurfacePointRenderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "millsim/haptics/HapticScene.h"
+
+namespace millsim {
+
+namespace {
+
+class SurfacePointAlgorithm final : public HapticAlgorithm {
+public:
+  SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k)
+      : k_(k), perSlice_(perSlice), heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
+    // Sphere: a Fibonacci lattice spreads any number of points evenly.
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < sphereVertices; ++i) {
+      const double y = 1.0 - 2.0 * (i + 0.5) / sphereVertices;
+      const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
+      sphere_.push_back(tool.tipRadius * glm::dvec3(r * std::cos(golden * i), y, r * std::sin(golden * i)));
+    }
+    // Slices cover the part of the shaft outside the burr sphere, evenly.
+    const double y0 = std::sqrt(std::max(0.0, tool.tipRadius * tool.tipRadius - tool.shaftRadius * tool.shaftRadius));
+    for (int j = 0; j < slices; ++j) sliceY_.push_back(y0 + (tool.shaftLength - y0) * (j + 0.5) / slices);
+    for (int v = 0; v < perSlice; ++v) {
+      const double a = 2.0 * std::numbers::pi * v / perSlice;
+      ring_.push_back(tool.shaftRadius * glm::dvec3(std::cos(a), 0.0, std::sin(a)));
+    }
+  }
+
+  std::string name() const override { return "SurfacePointRenderer"; }
+
+  void reset(const Pose& device) override {
+    lastDrawn_ = device;
+    heldSphere_ = glm::dvec3(0.0);
+    std::fill(heldSlice_.begin(), heldSlice_.end(), glm::dvec3(0.0));
+  }
+
+  HapticOutput step(HapticScene& scene, const HapticInput& in) override {
+    HapticOutput out;
+    const Pose& device = in.device;
+    if (!isFinite(device)) {
+      out.drawnTool = lastDrawn_;  // a bad pose changes nothing and draws the last good one
+      return out;
+    }
+    out.drawnTool = device;
+    const glm::dvec3 c = device.position;
+    const glm::dmat3 R = glm::mat3_cast(device.orientation);
+    const double h = scene.voxelSize();
+
+    // Eq. 14–17: the burr sphere.
+    if (scene.inside(c)) {
+      out.force = heldSphere_;  // eq. 17: past half immersion the sum would shrink and flip
+      out.flags |= kFlagHeldForce;
+    } else {
+      glm::dvec3 f(0.0);
+      for (const glm::dvec3& offset : sphere_) {
+        const glm::dvec3 v = c + R * offset;
+        if (!scene.inside(v)) continue;
+        f += penetration(scene, v, c, h);
+        ++out.contacts;
+      }
+      out.force = k_ * f / double(sphere_.size());  // eq. 14, summed (eq. 16)
+      heldSphere_ = out.force;
+    }
+
+    // Eq. 18–21: slices of the shaft.
+    const glm::dvec3 axis = R * glm::dvec3(0.0, 1.0, 0.0);
+    for (std::size_t j = 0; j < sliceY_.size(); ++j) {
+      const glm::dvec3 centre = c + axis * sliceY_[j];
+      glm::dvec3 reaction(0.0);
+      if (scene.inside(centre)) {
+        reaction = heldSlice_[j];  // eq. 19
+        out.flags |= kFlagHeldForce;
+      } else {
+        for (const glm::dvec3& offset : ring_) {
+          const glm::dvec3 v = centre + R * offset;
+          if (!scene.inside(v)) continue;
+          reaction += penetration(scene, v, centre, h);
+          ++out.contacts;
+        }
+        reaction *= k_ / double(perSlice_);  // eq. 14's weighting, per slice (eq. 18)
+        heldSlice_[j] = reaction;
+      }
+      out.torque += glm::cross(centre - c, reaction) / double(sliceY_.size());  // eq. 20–21
+    }
+    out.burrCentre = c;
+    sanitize(out, device);
+    lastDrawn_ = out.drawnTool;
+    return out;
+  }
+
+private:
+  // a_i of eq. 14: from a colliding vertex to where the segment towards the
+  // centre leaves the material, found by half-voxel steps and the density
+  // fraction of eq. 1 between the last two samples (the paper's eq. 15).
+  static glm::dvec3 penetration(const HapticScene& scene, const glm::dvec3& v, const glm::dvec3& centre, double h) {
+    const glm::dvec3 d = centre - v;
+    const double len = glm::length(d);
+    if (len <= 0.0) return glm::dvec3(0.0);
+    const int steps = std::max(1, int(std::ceil(len / (0.5 * h))));
+    double sPrev = scene.field(v);
+    glm::dvec3 prev = v;
+    for (int i = 1; i <= steps; ++i) {
+      const glm::dvec3 p = v + d * (double(i) / steps);
+      const double s = scene.field(p);
+      if (s <= 0.0) {
+        const double f = sPrev - s > 0.0 ? std::clamp(sPrev / (sPrev - s), 0.0, 1.0) : 1.0;
+        return prev + (p - prev) * f - v;
+      }
+      prev = p;
+      sPrev = s;
+    }
+    return d;  // inside all the way (cannot happen while the centre is outside)
+  }
+
+  double k_;
+  int perSlice_;
+  std::vector<glm::dvec3> sphere_, ring_;
+  std::vector<double> sliceY_;
+  glm::dvec3 heldSphere_{0.0};
+  Pose lastDrawn_;
+  std::vector<glm::dvec3> heldSlice_;
+};
+
+}  // namespace
+
+const NodeType& SurfacePointRenderer::type() {
+  static const NodeType t = makeNodeType<SurfacePointRenderer>(
+      "SurfacePointRenderer", "hapticsRenderer", "MillSim haptics",
+      "Algorithm #2: penalty force and torque from points on the tool's surface.");
+  return t;
+}
+
+std::unique_ptr<HapticAlgorithm> SurfacePointRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
+  return std::make_unique<SurfacePointAlgorithm>(tool, sphereVertices.get(), slices.get(), verticesPerSlice.get(),
+                                                 double(springConstant.get()));
+}
+
+}  // namespace millsim

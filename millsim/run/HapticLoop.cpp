@@ -1,0 +1,259 @@
+#include "millsim/run/HapticLoop.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/volume/BlockChannel.h"
+
+namespace millsim {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double microseconds(Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); }
+
+bool finitePose(const Pose& p) {
+  return std::isfinite(p.position.x) && std::isfinite(p.position.y) && std::isfinite(p.position.z) &&
+         std::isfinite(p.orientation.w) && std::isfinite(p.orientation.x) && std::isfinite(p.orientation.y) &&
+         std::isfinite(p.orientation.z);
+}
+
+// Real-time priority if the process may have it (root, CAP_SYS_NICE or an
+// rtprio limit); otherwise the loop runs at normal priority and says so.
+bool requestRealTimePriority() {
+  sched_param param{};
+  param.sched_priority = std::max(1, sched_get_priority_max(SCHED_FIFO) - 1);
+  return pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
+}
+
+// Sleeps until shortly before `deadline`, then spins: the kernel's wake-up
+// latency (tens to hundreds of µs) is larger than the accuracy a 1 kHz loop
+// needs, and spinning the last stretch removes it.
+void waitUntil(Clock::time_point deadline) {
+  constexpr auto kSpin = std::chrono::microseconds(200);
+  const auto sleepUntil = deadline - kSpin;
+  if (Clock::now() < sleepUntil) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(sleepUntil.time_since_epoch()).count();
+    timespec ts{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+    // steady_clock is CLOCK_MONOTONIC on Linux (libstdc++).
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    }
+  }
+  while (Clock::now() < deadline) {
+  }
+}
+
+}  // namespace
+
+LoopSettings LoopSettings::from(const HapticsDevice& device, const ToolGeometry& tool) {
+  LoopSettings s;
+  s.rate = double(device.desiredHapticsRate.get());
+  s.calibrationRotation = glm::normalize(glm::dquat(device.orientationCalibration.get().quat()));
+  s.calibrationOffset = glm::dvec3(device.positionCalibration.get());
+  s.limits.forceLimit = device.forceLimit.get();
+  s.limits.torqueLimit = device.torqueLimit.get();
+  s.enabled = device.enabled.get();
+  s.tipRadius = tool.tipRadius;
+  return s;
+}
+
+double LoopStats::p1Rate() const {
+  const double p99 = periodUs.percentile(0.99);
+  return p99 > 0.0 ? 1e6 / p99 : 0.0;
+}
+
+HapticLoop::HapticLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm,
+                       std::unique_ptr<DeviceDriver> driver, const LoopSettings& settings)
+    : scene_(scene),
+      switch_(std::move(algorithm)),
+      driver_(std::move(driver)),
+      settings_(settings),
+      safety_([&] {
+        if (!(settings.rate > 0.0) || !std::isfinite(settings.rate))
+          throw std::invalid_argument("the haptic rate must be a positive number of Hz");
+        // A slow loop (replay at a low rate) must not trip the watchdog every frame.
+        SafetyLimits l = settings.limits;
+        l.watchdogTimeout = std::max(l.watchdogTimeout, 2.5 / settings.rate);
+        return l;
+      }()),
+      records_(settings.logCapacity) {
+  if (!driver_) throw std::invalid_argument("HapticLoop needs a device driver");
+}
+
+HapticLoop::~HapticLoop() {
+  stop();
+  join();
+  finish();
+  collectRetired();
+  delete incoming_.exchange(nullptr);
+}
+
+void HapticLoop::publishBlocks(std::size_t index, BlockChannel& channel) {
+  if (index >= scene_.volumeCount()) throw std::out_of_range("publishBlocks: no volume " + std::to_string(index));
+  if (publishers_.size() < scene_.volumeCount()) {
+    publishers_.resize(scene_.volumeCount());
+    publishedEpoch_.resize(scene_.volumeCount(), 0);
+  }
+  publishers_[index] = std::make_unique<BlockPublisher>(*scene_.volume(index).voxels, channel);
+  publishedEpoch_[index] = scene_.volume(index).millEpoch;
+}
+
+bool HapticLoop::replaceRenderer(std::unique_ptr<HapticAlgorithm> next) {
+  HapticAlgorithm* expected = nullptr;
+  if (!incoming_.compare_exchange_strong(expected, next.get(), std::memory_order_acq_rel)) return false;
+  next.release();
+  return true;
+}
+
+void HapticLoop::collectRetired() { delete retired_.exchange(nullptr, std::memory_order_acq_rel); }
+
+void HapticLoop::frame(double t, double dt, double periodUs) {
+  const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
+  const DeviceReading reading = driver_->read(t, dt);
+  // A missing or corrupt sample keeps the last good pose; the watchdog sees its age.
+  if (reading.valid && finitePose(reading.pose)) {
+    lastReading_ = reading;
+    lastReading_.pose.orientation = glm::normalize(reading.pose.orientation);
+    haveReading_ = true;
+    sampleTime_ = t;
+  }
+  const Pose device{settings_.calibrationRotation * lastReading_.pose.position + settings_.calibrationOffset,
+                    settings_.calibrationRotation * lastReading_.pose.orientation};
+  if (nextFrame_ == 0) switch_.current().reset(device);
+  if (HapticAlgorithm* next = incoming_.exchange(nullptr, std::memory_order_acq_rel))
+    switch_.replace(std::unique_ptr<HapticAlgorithm>(next), device);
+
+  const bool button = haveReading_ && lastReading_.button;
+  HapticOutput out = switch_.step(scene_, HapticInput{device, dt, button});
+  // Retired algorithms are freed by the scene thread, never here.
+  if (!retiredHeld_) retiredHeld_ = switch_.takeRetired();
+  if (retiredHeld_ && retired_.load(std::memory_order_acquire) == nullptr)
+    retired_.store(retiredHeld_.release(), std::memory_order_release);
+
+  if (button && out.burrCuts) stats_.removedVolume += scene_.mill(out.burrCentre, settings_.tipRadius);
+  for (std::size_t i = 0; i < publishers_.size(); ++i) {
+    if (!publishers_[i]) continue;
+    const auto& v = scene_.volume(i);
+    static const std::vector<openvdb::Coord> kNone;
+    const bool fresh = v.millEpoch != publishedEpoch_[i];
+    publishedEpoch_[i] = v.millEpoch;
+    // Publishing with nothing new retries blocks the full channel refused earlier.
+    if (fresh || publishers_[i]->pending() > 0) publishers_[i]->publish(fresh ? v.changed.origins() : kNone);
+  }
+
+  SafeWrench w;
+  if (settings_.enabled && haveReading_) {
+    w = safety_.filter(out.force, out.torque, t, sampleTime_);
+  } else if (!haveReading_) {
+    w.events = kSafetyWatchdog;  // nothing from the device yet: send nothing
+  }
+  out.flags |= w.events;
+  const glm::dquat toRaw = glm::conjugate(settings_.calibrationRotation);
+  driver_->write(toRaw * w.force, toRaw * w.torque);
+
+  FrameRecord& r = newest_.back();
+  r.frame = nextFrame_++;
+  r.t = t;
+  r.device = device;
+  r.button = button;
+  r.force = w.force;
+  r.torque = w.torque;
+  r.out = out;
+  r.computeUs = settings_.timing ? microseconds(Clock::now() - begin) : 0.0;
+  r.periodUs = periodUs;
+  r.removedVolume = stats_.removedVolume;
+  records_.push(r);
+  newest_.publish();
+
+  ++stats_.frames;
+  stats_.periodUs.add(periodUs);
+  stats_.computeUs.add(r.computeUs);
+  stats_.peakForce = std::max(stats_.peakForce, glm::length(w.force));
+  stats_.peakTorque = std::max(stats_.peakTorque, glm::length(w.torque));
+  stats_.maxContacts = std::max(stats_.maxContacts, out.contacts);
+  stats_.contactFrames += out.contacts > 0;
+  stats_.suppressed += (out.flags & kFlagNonFiniteSuppressed) != 0;
+}
+
+void HapticLoop::stepSimulated() {
+  const double dt = 1.0 / settings_.rate;
+  const double t = frameTime(nextFrame_);
+  frame(t, dt, dt * 1e6);
+  stats_.elapsed = t;
+}
+
+void HapticLoop::start(double duration) {
+  if (thread_.joinable()) throw std::logic_error("HapticLoop::start: already running");
+  finished_.store(false, std::memory_order_release);
+  thread_ = std::thread([this, duration] { runRealTime(duration); });
+}
+
+void HapticLoop::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void HapticLoop::runRealTime(double duration) {
+  stats_.realTimePriority = requestRealTimePriority();
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings_.rate));
+  const auto start = Clock::now();
+  auto deadline = start;
+  auto previous = start;
+  while (!stopRequested_.load(std::memory_order_relaxed)) {
+    waitUntil(deadline);
+    const auto now = Clock::now();
+    const double t = std::chrono::duration<double>(now - start).count();
+    if (t > duration) break;
+    if (now - deadline > period / 2) ++stats_.missedDeadlines;
+    const double periodUs = nextFrame_ == 0 ? microseconds(period) : microseconds(now - previous);
+    // The step integrates over the time that really passed, within reason.
+    const double dt = std::clamp(periodUs * 1e-6, 0.25 / settings_.rate, 4.0 / settings_.rate);
+    previous = now;
+    try {
+      frame(t, dt, periodUs);
+    } catch (const std::exception& e) {  // a renderer or driver bug must still stop the device cleanly
+      failure_ = std::string("haptic frame failed: ") + e.what();
+      break;
+    }
+    stats_.elapsed = t;
+    if (driver_->failed()) {
+      failure_ = driver_->failure();
+      break;
+    }
+    deadline += period;
+    // Fallen more than a period behind: skip the lost slots (counted as
+    // missed) instead of bursting frames to catch up.
+    const auto after = Clock::now();
+    if (after > deadline + period) {
+      const auto lost = (after - deadline) / period;
+      stats_.missedDeadlines += long(lost);
+      deadline += lost * period;
+    }
+  }
+  finish();
+  finished_.store(true, std::memory_order_release);
+}
+
+void HapticLoop::finish() {
+  if (stopped_) return;
+  stopped_ = true;
+  driver_->stop();
+  if (failure_.empty() && driver_->failed()) failure_ = driver_->failure();
+}
+
+LoopStats HapticLoop::stats() const {
+  LoopStats s = stats_;
+  s.safety = safety_.counters();
+  s.device = driver_->counters();
+  s.recordsDropped = records_.dropped();
+  return s;
+}
+
+}  // namespace millsim

@@ -1,0 +1,164 @@
+#pragma once
+// HapticLoop: runs one device at its haptic rate. Each frame reads the device,
+// steps the renderer (through a RendererSwitch, so the algorithm can be
+// swapped live), mills, passes the wrench through the safety layer, writes it
+// to the device, and publishes the frame for logs and graphics.
+//
+// The same frame() serves both clocks:
+//  - runSimulated: frames at t = n / rate on the calling thread (replay, tests);
+//    bit-reproducible because nothing reads the wall clock unless timing is on;
+//  - start: a dedicated real-time thread, sleep-then-spin to each deadline.
+//
+// Hand-offs are wait-free: frame records go into an SPSC ring the scene
+// thread drains (a full ring drops records and counts them), the newest
+// frame goes into a triple buffer for graphics, milled blocks into one
+// BlockChannel per volume, and a new renderer arrives through an atomic
+// mailbox. The haptic thread never waits on another thread and does not
+// allocate once running (algorithms retire through a mailbox to be freed on
+// the scene thread).
+#include <atomic>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "millsim/driver/SafetyLayer.h"
+#include "millsim/driver/DeviceDriver.h"
+#include "millsim/run/FrameHistogram.h"
+#include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/run/RendererSwitch.h"
+#include "millsim/run/SpscRing.h"
+#include "millsim/run/TripleBuffer.h"
+
+namespace millsim {
+
+class BlockChannel;
+class BlockPublisher;
+class HapticScene;
+class HapticsDevice;
+
+// One frame, as logged (docs: the replay log format).
+struct FrameRecord {
+  long frame = 0;
+  double t = 0.0;         // s since the run started
+  Pose device;            // calibrated world pose the renderer saw
+  bool button = false;
+  glm::dvec3 force{0.0};  // N, world frame, as sent (after the safety layer)
+  glm::dvec3 torque{0.0};
+  HapticOutput out;       // the renderer's output (flags include the safety events)
+  double computeUs = 0.0; // device I/O + step + milling; 0 unless timing is on
+  double periodUs = 0.0;  // time since the previous frame started
+  double removedVolume = 0.0;  // m³ milled so far
+};
+
+// The loop's fixed parameters, compiled from the device node on the scene thread.
+struct LoopSettings {
+  double rate = 1000.0;  // Hz
+  glm::dquat calibrationRotation{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 calibrationOffset{0.0};
+  SafetyLimits limits;
+  bool enabled = true;
+  double tipRadius = 1e-3;    // m: the burr that mills
+  bool timing = true;         // measure compute time per frame
+  std::size_t logCapacity = 1 << 14;  // frames the scene thread may fall behind by
+
+  // From a device node's fields (rate, limits, calibration, enabled) and its tool.
+  static LoopSettings from(const HapticsDevice& device, const ToolGeometry& tool);
+};
+
+struct LoopStats {
+  long frames = 0;
+  long missedDeadlines = 0;    // frames started > half a period late, plus skipped slots
+  double elapsed = 0.0;        // s, first to last frame
+  FrameHistogram periodUs, computeUs;
+  double peakForce = 0.0, peakTorque = 0.0;
+  int maxContacts = 0;
+  long contactFrames = 0;
+  long suppressed = 0;         // frames whose renderer output was non-finite
+  double removedVolume = 0.0;  // m³
+  SafetyCounters safety;
+  DeviceCounters device;
+  std::uint64_t recordsDropped = 0;
+  bool realTimePriority = false;  // SCHED_FIFO was granted
+
+  double meanRate() const { return elapsed > 0.0 && frames > 1 ? double(frames - 1) / elapsed : 0.0; }
+  // The rate that 99 % of frames met or beat: 1 / (99th-percentile period).
+  double p1Rate() const;
+};
+
+class HapticLoop {
+public:
+  HapticLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, std::unique_ptr<DeviceDriver> driver,
+             const LoopSettings& settings);
+  ~HapticLoop();  // stops and joins a running thread
+  HapticLoop(const HapticLoop&) = delete;
+  HapticLoop& operator=(const HapticLoop&) = delete;
+
+  // Before running: publish milled blocks of the scene's volume `index` into
+  // `channel` (the graphics side drains it into its VolumeReplica).
+  void publishBlocks(std::size_t index, BlockChannel& channel);
+
+  // Simulated time on this thread: the next frame at t = frame / rate.
+  void stepSimulated();
+  // Real time on a new thread, until `duration` seconds have passed, stop()
+  // is called, or the device fails. Returns at once.
+  void start(double duration);
+  void stop() { stopRequested_.store(true, std::memory_order_relaxed); }
+  void join();
+  bool finished() const { return finished_.load(std::memory_order_acquire); }
+  // Zeroes the device's output and releases it. The real-time thread does
+  // this itself when it ends; call it after simulated runs (the destructor
+  // does too). Idempotent.
+  void finish();
+
+  // Any thread but the haptic one: the algorithm takes over at the next frame,
+  // cross-faded (RendererSwitch). False if the previous swap is still pending.
+  bool replaceRenderer(std::unique_ptr<HapticAlgorithm> next);
+  // Scene thread: frees algorithms the haptic thread has retired.
+  void collectRetired();
+
+  // The scene thread drains these; graphics reads the snapshot.
+  SpscRing<FrameRecord>& records() { return records_; }
+  TripleBuffer<FrameRecord>& newest() { return newest_; }
+
+  // Complete after join() or between simulated frames.
+  LoopStats stats() const;
+  // Why the device stopped the run (empty if it did not).
+  const std::string& failure() const { return failure_; }
+  const LoopSettings& settings() const { return settings_; }
+  double frameTime(long frame) const { return double(frame) / settings_.rate; }
+
+private:
+  void frame(double t, double dt, double periodUs);
+  void runRealTime(double duration);
+
+  HapticScene& scene_;
+  RendererSwitch switch_;
+  std::unique_ptr<DeviceDriver> driver_;
+  LoopSettings settings_;
+  SafetyLayer safety_;
+  LoopStats stats_;
+
+  DeviceReading lastReading_;
+  bool haveReading_ = false;
+  double sampleTime_ = 0.0;
+  long nextFrame_ = 0;
+  std::vector<std::unique_ptr<BlockPublisher>> publishers_;
+  std::vector<std::uint64_t> publishedEpoch_;
+
+  SpscRing<FrameRecord> records_;
+  TripleBuffer<FrameRecord> newest_;
+  std::atomic<HapticAlgorithm*> incoming_{nullptr};
+  std::atomic<HapticAlgorithm*> retired_{nullptr};
+  std::unique_ptr<HapticAlgorithm> retiredHeld_;  // waiting for the retired mailbox to empty
+
+  std::thread thread_;
+  std::atomic<bool> stopRequested_{false};
+  std::atomic<bool> finished_{false};
+  std::string failure_;
+  bool stopped_ = false;
+};
+
+}  // namespace millsim

@@ -1,0 +1,46 @@
+#pragma once
+// Deterministic replay: runs a scene's device through a trajectory at a fixed
+// rate in simulated time (HapticLoop::stepSimulated), milling when the button
+// is on, and writes one log row per frame (FrameLog.h). A TrajectoryDevice
+// plays it open loop, a HandDevice follows it closed loop, a hardware device
+// is replaced by the trajectory. The same scene, trajectory and options give
+// the same bytes on every run (compute time is only logged on request,
+// because wall-clock time is the one thing that cannot repeat).
+#include <limits>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "millsim/core/Scene.h"
+#include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/run/RunSetup.h"
+#include "millsim/devices/Trajectory.h"
+
+namespace millsim {
+
+struct ReplayOptions {
+  double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
+  std::string renderer;          // replace the scene's renderer with a default one of this type
+  bool timing = false;           // fill frame_us with measured compute time
+  double until = std::numeric_limits<double>::infinity();  // stop after this trajectory time (s)
+};
+
+struct ReplaySummary {
+  std::string rendererName;
+  long frames = 0;
+  double rate = 0.0;
+  double peakForce = 0.0;   // N, after the safety layer
+  double peakTorque = 0.0;  // N·m
+  int maxContacts = 0;
+  long contactFrames = 0;
+  double removedVolume = 0.0;  // m³
+  long suppressed = 0;         // frames whose output was non-finite and zeroed
+  double meanFrameUs = 0.0, p99FrameUs = 0.0;  // only with timing
+  HapticOutput last;           // the final frame's output (e.g. where to draw the tool)
+};
+
+// Throws std::runtime_error with a clear message if the scene has no device,
+// no renderer, or an unknown --renderer type.
+ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* log, const ReplayOptions& options);
+
+}  // namespace millsim

@@ -1,0 +1,75 @@
+#include "millsim/run/RunSetup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/devices/HapticsDevice.h"
+
+namespace millsim {
+
+HapticsDevice* findDevice(const Scene& scene) {
+  auto devices = scene.nodesOfType<HapticsDevice>();
+  return devices.empty() ? nullptr : devices.front();
+}
+
+namespace {
+
+const HapticsRendererNode* rendererOfType(Scene& scene, const std::string& typeName,
+                                          std::shared_ptr<Node>& keepAlive) {
+  keepAlive = scene.registry.create(typeName);
+  auto* renderer = dynamic_cast<const HapticsRendererNode*>(keepAlive.get());
+  if (renderer) return renderer;
+  std::string names;
+  for (const NodeType* t : scene.registry.all()) {
+    auto probe = t->create();
+    if (dynamic_cast<HapticsRendererNode*>(probe.get())) names += (names.empty() ? "" : ", ") + t->name;
+  }
+  throw std::runtime_error("unknown renderer type '" + typeName + "' (expected one of: " + names + ")");
+}
+
+}  // namespace
+
+CompiledRun compileRun(Scene& scene, const std::string& rendererOverride) {
+  CompiledRun run;
+  run.device = findDevice(scene);
+  if (!run.device)
+    throw std::runtime_error("the scene has no device node (e.g. <HandDevice> or <TrajectoryDevice>) to run");
+  MillTool defaultTool;
+  run.tool = run.device->tool.get() ? run.device->tool.get()->geometry() : defaultTool.geometry();
+  run.scene = std::make_unique<HapticScene>(scene);
+  run.settings = LoopSettings::from(*run.device, run.tool);
+  if (!rendererOverride.empty()) {
+    run.algorithm = compileRenderer(scene, rendererOverride, run);
+  } else {
+    const HapticsRendererNode* renderer = run.device->hapticsRenderer.get().get();
+    if (!renderer)
+      throw std::runtime_error(run.device->typeName() +
+                               " has no haptics renderer; add one to the scene or pass --renderer");
+    run.algorithm = renderer->compile(run.tool, *run.scene);
+  }
+  run.rendererName = run.algorithm->name();
+  return run;
+}
+
+std::unique_ptr<HapticAlgorithm> compileRenderer(Scene& scene, const std::string& typeName, const CompiledRun& run) {
+  std::shared_ptr<Node> node;
+  return rendererOfType(scene, typeName, node)->compile(run.tool, *run.scene);
+}
+
+void publishToDevice(HapticsDevice& device, const FrameRecord& r, double rate) {
+  device.devicePosition.set(glm::vec3(r.device.position));
+  const glm::dquat q = r.device.orientation.w < 0.0 ? -r.device.orientation : r.device.orientation;
+  const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
+  const glm::dvec3 v(q.x, q.y, q.z);
+  const double s = glm::length(v);
+  device.deviceOrientation.set(s > 1e-12 ? Rotation{glm::vec3(v / s), float(angle)} : Rotation{});
+  device.force.set(glm::vec3(r.force));
+  device.torque.set(glm::vec3(r.torque));
+  device.mainButton.set(r.button);
+  device.hapticsRate.set(float(rate));
+  device.hapticsLoopTime.set(Time{r.computeUs * 1e-6});
+}
+
+}  // namespace millsim

@@ -1,0 +1,41 @@
+#pragma once
+// What every run (replay, millsim run, render, tests) does on the scene thread
+// before the first frame: find the device, pick its renderer (or a
+// --renderer override), build the haptic scene and compile the algorithm.
+#include <memory>
+#include <string>
+
+#include "millsim/core/Scene.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/haptics/HapticScene.h"
+
+namespace millsim {
+
+class HapticsDevice;
+
+struct CompiledRun {
+  HapticsDevice* device = nullptr;
+  ToolGeometry tool;
+  std::unique_ptr<HapticScene> scene;
+  std::unique_ptr<HapticAlgorithm> algorithm;
+  LoopSettings settings;
+  std::string rendererName;
+};
+
+// The first device node of the scene, or null.
+HapticsDevice* findDevice(const Scene& scene);
+
+// Throws std::runtime_error with a clear message when the scene has no
+// device, the device no renderer, or `rendererOverride` names no renderer
+// type (the message lists the ones there are).
+CompiledRun compileRun(Scene& scene, const std::string& rendererOverride = {});
+
+// A default-configured algorithm of the registered renderer type `typeName`
+// for a compiled run (the live renderer swap and --renderer use it).
+std::unique_ptr<HapticAlgorithm> compileRenderer(Scene& scene, const std::string& typeName, const CompiledRun& run);
+
+// Copies a frame into the device node's output fields (devicePosition,
+// force, mainButton, hapticsRate, …). Scene thread only.
+void publishToDevice(HapticsDevice& device, const FrameRecord& r, double rate);
+
+}  // namespace millsim
