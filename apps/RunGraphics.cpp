@@ -6,7 +6,7 @@
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/GraphicsModule.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/BlockChannel.h"
 
 namespace millsim::app {
@@ -19,7 +19,7 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kChannelBlocks = 2048;
 }  // namespace
 
-RunGraphics::RunGraphics(const Scene& scene, HapticScene& haptic, HapticLoop& loop, const ToolGeometry& tool,
+RunGraphics::RunGraphics(const Scene& scene, VoxelScene& haptic, HapticLoop& loop, const ToolGeometry& tool,
                          const RunGraphicsOptions& options)
     : scene_(scene), haptic_(haptic), loop_(loop), tool_(tool), options_(options) {}
 

@@ -16,7 +16,7 @@
 
 namespace millsim {
 class BlockChannel;
-class HapticScene;
+class VoxelScene;
 class Scene;
 class VolumeReplica;
 }  // namespace millsim
@@ -40,7 +40,7 @@ struct RunGraphicsStats {
 
 class RunGraphics {
 public:
-  RunGraphics(const Scene& scene, HapticScene& haptic, HapticLoop& loop, const ToolGeometry& tool,
+  RunGraphics(const Scene& scene, VoxelScene& haptic, HapticLoop& loop, const ToolGeometry& tool,
               const RunGraphicsOptions& options);
   ~RunGraphics();
 
@@ -56,7 +56,7 @@ private:
   void run();
 
   const Scene& scene_;
-  HapticScene& haptic_;
+  VoxelScene& haptic_;
   HapticLoop& loop_;
   ToolGeometry tool_;
   RunGraphicsOptions options_;

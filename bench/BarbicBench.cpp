@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "millsim/renderers/BarbicRenderer.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
@@ -51,7 +51,7 @@ Pose contactPose(long n, double y) {
   return Pose{{0.0, y, 0.0}, glm::angleAxis(0.26, glm::dvec3(std::cos(a), 0.0, std::sin(a)))};
 }
 
-double surfaceHeight(const HapticScene& scene) {
+double surfaceHeight(const VoxelScene& scene) {
   double y = 12e-3;
   while (y > 0.0 && !scene.inside({0.0, y, 0.0})) y -= 0.01e-3;
   return y;
@@ -60,7 +60,7 @@ double surfaceHeight(const HapticScene& scene) {
 // args: scale, phantom (0/1), culling (1) or brute force (0).
 void BM_Barbic(benchmark::State& state) {
   const int scale = int(state.range(0));
-  HapticScene scene;
+  VoxelScene scene;
   scene.addVolume(phantom(int(state.range(1))), glm::dmat4(1.0), 700.0);
   BarbicRenderer r;
   r.pointShellScale.set(scale);

@@ -88,7 +88,7 @@ void BM_StampUpdate(benchmark::State& state) {
       if (p.y > top.y) top = p;
   const glm::ivec3 topIndex(glm::round(volume.localToIndex(glm::dvec3(top))));
 
-  std::vector<std::vector<openvdb::Coord>> stamps;
+  std::vector<std::vector<millsim::BlockOrigin>> stamps;
   auto acc = volume.grid().getAccessor();
   for (int dx : {0, 7, -13})
     for (int dz : {0, -7, 13}) {
@@ -106,7 +106,8 @@ void BM_StampUpdate(benchmark::State& state) {
               acc.setValueOff(openvdb::Coord(x, y, z), volume.airValue());
               leaves.insert(openvdb::Coord(x & ~7, y & ~7, z & ~7));
             }
-      stamps.emplace_back(leaves.begin(), leaves.end());
+      std::vector<millsim::BlockOrigin>& origins = stamps.emplace_back();
+      for (const openvdb::Coord& c : leaves) origins.emplace_back(c.x(), c.y(), c.z());
     }
 
   std::size_t n = 0, chunks = 0, leaves = 0, triangles = 0;

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/ToothPhantom.h"
@@ -34,7 +34,7 @@ Pose contactPose(long n, double y) {
 }
 
 // Height of the occlusal surface above the volume's centre line.
-double surfaceHeight(const HapticScene& scene) {
+double surfaceHeight(const VoxelScene& scene) {
   double y = 12e-3;
   while (y > 0.0 && !scene.inside({0.0, y, 0.0})) y -= 0.01e-3;
   return y;
@@ -44,7 +44,7 @@ double surfaceHeight(const HapticScene& scene) {
 // when the burr centre is on the surface (0 for #1's centre vertex, the burr
 // radius for #2's sphere points). The felt part is pressed 0.3 mm in.
 void run(benchmark::State& state, const HapticsRendererNode& renderer, double feltOffset) {
-  HapticScene scene;
+  VoxelScene scene;
   scene.addVolume(phantom(), glm::dmat4(1.0), 700.0);
   const double y = surfaceHeight(scene) + feltOffset - 0.3e-3;
   auto algorithm = renderer.compile(kTool, scene);

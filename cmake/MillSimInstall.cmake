@@ -10,8 +10,18 @@ install(TARGETS millsim EXPORT MillSimTargets
 install(TARGETS millsim-app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # libmillsim_graphics sits next to libmillsim, where loadGraphicsModule() looks for it.
 install(TARGETS millsim_graphics LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The public headers: every library header but the internals listed in
+# cmake/private-headers.txt (scripts/include-graph checks that no public header
+# includes one, and that none reaches Eigen or VTK).
+file(STRINGS ${CMAKE_SOURCE_DIR}/cmake/private-headers.txt _private REGEX "^millsim/")
+set(_exclude "")
+foreach(_h IN LISTS _private)
+  string(REGEX REPLACE "^millsim/" "" _h ${_h})
+  string(REPLACE "." "\\." _h ${_h})
+  list(APPEND _exclude REGEX "/${_h}$" EXCLUDE)
+endforeach()
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/millsim/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/millsim
-        FILES_MATCHING PATTERN "*.h")
+        FILES_MATCHING PATTERN "*.h" ${_exclude})
 install(EXPORT MillSimTargets NAMESPACE MillSim:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/MillSim)
 
 configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/MillSimConfig.cmake.in

@@ -55,7 +55,7 @@ std::unique_ptr<AnalyticScene> voxelise(const Shape& shape, double h) {
   out->volume = std::make_unique<VoxelVolume>(VoxelVolume::fromDense(v.data(), n, glm::dvec3(h), 0.f));
   // Voxel i is at local (i − (n−1)/2)·h: translate the centre to the box centre.
   out->localToWorld = glm::translate(glm::dmat4(1.0), lo + glm::dvec3(n - 1) * (0.5 * h));
-  out->scene = std::make_unique<HapticScene>();
+  out->scene = std::make_unique<VoxelScene>();
   out->scene->addVolume(*out->volume, out->localToWorld, kIso);
   return out;
 }

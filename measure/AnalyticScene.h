@@ -10,7 +10,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim::measure {
@@ -36,12 +36,12 @@ Shape plate(double thickness, glm::dvec3 lo, glm::dvec3 hi);
 
 // A shape voxelised at spacing h with a one-voxel linear ramp
 // (density = 1000·clamp(½ − d/h)), voxel centres on the lattice h·ℤ³ so planes
-// through the origin fall exactly on the iso-surface; placed in a HapticScene.
+// through the origin fall exactly on the iso-surface; placed in a VoxelScene.
 struct AnalyticScene {
   Shape shape;
   double h;
   std::unique_ptr<VoxelVolume> volume;
-  std::unique_ptr<HapticScene> scene;
+  std::unique_ptr<VoxelScene> scene;
   glm::dmat4 localToWorld{1.0};
 };
 std::unique_ptr<AnalyticScene> voxelise(const Shape& shape, double h);

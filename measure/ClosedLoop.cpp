@@ -42,7 +42,7 @@ glm::dvec3 rotationVector(glm::dquat q) {
   return v * (2.0 * std::atan2(s, q.w) / s);
 }
 
-Trace runClosedLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, const HandRun& run) {
+Trace runClosedLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, const HandRun& run) {
   LoopSettings s;
   s.rate = run.rate;
   s.timing = false;  // simulated time: bit-reproducible

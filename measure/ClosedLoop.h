@@ -1,5 +1,5 @@
 #pragma once
-// The closed-loop harness: a renderer, a HapticScene and the simulated hand
+// The closed-loop harness: a renderer, a VoxelScene and the simulated hand
 // (HandDevice's driver) run through HapticLoop::stepSimulated at 1 kHz, so the
 // safety layer, the zero-order hold and the one-frame delay are the real ones.
 // Optionally drops a fraction of device samples (the loop then holds the last
@@ -38,7 +38,7 @@ struct Trace {
   long suppressed = 0;  // frames whose output the renderer or loop had to zero
 };
 
-Trace runClosedLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, const HandRun& run);
+Trace runClosedLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, const HandRun& run);
 
 // The passivity observer (Hannaford & Ryu 2002) at the device port, with
 // v(k) = (x(k) − x(k−1))/T and ω(k) = Δθ(k)/T from the device pose differences

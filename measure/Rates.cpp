@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/ToothPhantom.h"
 
 namespace millsim::measure {
@@ -33,7 +33,7 @@ Pose contactPose(long n, double y) {
 
 RateResult measureRate(const RendererSpec& spec, long frames, const std::string& label, bool fine) {
   auto node = makeRenderer(spec);
-  HapticScene scene;
+  VoxelScene scene;
   VoxelVolume& volume = phantom(fine);
   scene.addVolume(volume, glm::dmat4(1.0), 700.0);
   double top = 12e-3;

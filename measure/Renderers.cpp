@@ -65,7 +65,7 @@ std::unique_ptr<AnalyticScene> probeSurface(double h) {
 }
 
 double contactOffsetOn(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h, AnalyticScene& surface) {
-  HapticScene& scene = *surface.scene;
+  VoxelScene& scene = *surface.scene;
   auto algorithm = renderer.compile(tool, scene);
   const double top = 2.0 * tool.tipRadius + 2.0 * h, step = 0.01 * h;
   algorithm->reset(Pose{{0.0, top, 0.0}, {1, 0, 0, 0}});

@@ -86,7 +86,7 @@ public:
   }
   std::size_t volumeCount() const override { return meshes_.size(); }
 
-  void volumeChanged(std::size_t index, const std::vector<openvdb::Coord>& blocks) override {
+  void volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) override {
     if (blocks.empty()) return;
     context_.makeCurrent();
     mesh(index).update(blocks);

@@ -24,13 +24,13 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
-#include <openvdb/openvdb.h>
 
 #include "millsim/graphics/Image.h"
 #include "millsim/graphics/SceneView.h"
 #include "millsim/haptics/HapticsRenderer.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/math/Pose.h"
+#include "millsim/volume/DirtyBlocks.h"
 
 namespace millsim {
 
@@ -53,7 +53,7 @@ inline ToolView toolView(const ToolGeometry& g, const HapticOutput& out) {
 struct RendererOptions {
   int width = 512, height = 512;
   std::string viewpoint;  // DEF name of the Viewpoint to look through; empty: the first one
-  // Voxels to mesh in place of each scene VolumeObject's own, in HapticScene's
+  // Voxels to mesh in place of each scene VolumeObject's own, in VoxelScene's
   // order (e.g. VolumeReplica volumes in a live run). Empty: the objects' own.
   std::vector<const VoxelVolume*> voxels;
 };
@@ -73,7 +73,7 @@ public:
   virtual std::size_t volumeCount() const = 0;
   // The listed 8³ blocks (origins, as VolumeReplica::apply and DirtyBlocks give
   // them) of volume `index` changed: re-mesh and re-upload the chunks they touch.
-  virtual void volumeChanged(std::size_t index, const std::vector<openvdb::Coord>& blocks) = 0;
+  virtual void volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) = 0;
   // Re-meshes a whole volume (when which blocks changed is not known).
   virtual void rebuildVolume(std::size_t index) = 0;
 

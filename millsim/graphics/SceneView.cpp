@@ -1,7 +1,6 @@
 #include "millsim/graphics/SceneView.h"
 
 #include <cmath>
-#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
@@ -10,13 +9,13 @@
 #include "millsim/std/Appearance.h"
 #include "millsim/std/Background.h"
 #include "millsim/std/Box.h"
-#include "millsim/std/ClipPlane.h"
 #include "millsim/std/Cylinder.h"
 #include "millsim/std/Material.h"
+#include "millsim/std/SceneWalk.h"
 #include "millsim/std/Shape.h"
 #include "millsim/std/Sphere.h"
-#include "millsim/std/Transform.h"
 #include "millsim/std/Viewpoint.h"
+#include "millsim/volume/PlacedVolumes.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -73,10 +72,8 @@ void grow(SceneView& sv, bool& any, const glm::dmat4& m, const glm::dvec3& half)
 SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
   SceneView sv;
   bool haveView = false, haveBackground = false, haveBounds = false;
-  std::function<void(Node&, const glm::dmat4&, const ClipPlanes&)> walk = [&](Node& n, const glm::dmat4& parent,
-                                                                               const ClipPlanes& clips) {
-    glm::dmat4 m = parent;
-    if (auto* t = dynamic_cast<Transform*>(&n)) m = parent * glm::dmat4(t->localMatrix());
+  walkScene(scene, [&](Node& n, const WalkFrame& at) {
+    const glm::dmat4& m = at.localToWorld;
     if (auto* vp = dynamic_cast<Viewpoint*>(&n); vp && !haveView && (!viewpoint || viewpoint == vp)) {
       haveView = true;
       sv.view.position = glm::dvec3(m * glm::dvec4(glm::dvec3(vp->position.get()), 1.0));
@@ -93,7 +90,7 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
     }
     if (auto* shape = dynamic_cast<Shape*>(&n)) {
       Node* g = shape->geometry.get().get();
-      DrawShape d{DrawShape::Kind::Sphere, m, materialOf(*shape), clips};
+      DrawShape d{DrawShape::Kind::Sphere, m, materialOf(*shape), *at.clipPlanes};
       bool known = true;
       if (auto* s = dynamic_cast<Sphere*>(g))
         d.model = glm::scale(m, glm::dvec3(s->radius.get()));
@@ -109,26 +106,12 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
         sv.shapes.push_back(std::move(d));
       }
     }
-    if (auto* vo = dynamic_cast<VolumeObject*>(&n); vo && vo->volume()) {
-      sv.volumes.push_back({vo->volume(), m, double(vo->isoValue.get()), clips});
-      grow(sv, haveBounds, m, vo->volume()->halfSize());
-    }
-    for (Field* f : n.fields()) {
-      auto* nf = dynamic_cast<NodeFieldBase*>(f);
-      if (!nf) continue;
-      const auto children = nf->nodes();
-      // A ClipPlane clips its siblings (and their descendants) in this node's frame.
-      ClipPlanes scoped = clips;
-      for (const auto& child : children)
-        if (auto* cp = dynamic_cast<ClipPlane*>(child.get()); cp && cp->enabled.get()) {
-          glm::dvec4 p = glm::transpose(glm::inverse(m)) * glm::dvec4(cp->plane.get());
-          const double len = glm::length(glm::dvec3(p));
-          if (len > 0.0 && std::isfinite(len)) scoped.push_back(p / len);
-        }
-      for (const auto& child : children) walk(*child, m, scoped);
-    }
-  };
-  walk(*scene.root, glm::dmat4(1.0), {});
+  });
+  // Volumes from the list the haptic scene is built from: the same order by construction.
+  for (const PlacedVolume& p : placedVolumes(scene)) {
+    sv.volumes.push_back({p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.clipPlanes});
+    grow(sv, haveBounds, p.localToWorld, p.node->volume()->halfSize());
+  }
   return sv;
 }
 

@@ -62,7 +62,7 @@ struct SceneView {
   ViewSpec view;                        // the first Viewpoint, or X3D's default
   glm::vec3 background{0.f};            // the first Background's first skyColor
   std::vector<DrawShape> shapes;
-  std::vector<DrawVolume> volumes;      // loaded VolumeObjects, in HapticScene's order
+  std::vector<DrawVolume> volumes;      // loaded VolumeObjects, in placedVolumes() order (as VoxelScene)
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};  // of shapes and volumes (world); equal if none
 };
 

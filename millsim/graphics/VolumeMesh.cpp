@@ -24,7 +24,7 @@ void VolumeMesh::build() {
   for (const auto& [key, chunk] : mesher_.chunks()) upload(key, chunk);
 }
 
-void VolumeMesh::update(const std::vector<openvdb::Coord>& blocks) {
+void VolumeMesh::update(const std::vector<BlockOrigin>& blocks) {
   for (const auto& key : mesher_.update(blocks)) {
     if (const MeshChunk* c = mesher_.chunk(key))
       upload(key, *c);

@@ -25,7 +25,7 @@ public:
   VolumeMesh(const VoxelVolume& voxels, float isoValue);
 
   void build();                                             // everything afresh
-  void update(const std::vector<openvdb::Coord>& blocks);   // after these 8³ blocks changed
+  void update(const std::vector<BlockOrigin>& blocks);   // after these 8³ blocks changed
   void draw() const;
 
   std::size_t triangles() const { return mesher_.triangleCount(); }

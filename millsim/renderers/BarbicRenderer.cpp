@@ -13,7 +13,6 @@
 #include "millsim/renderers/Obb.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/PointShell.h"
-#include "millsim/volume/VolumeObject.h"
 
 namespace millsim {
 
@@ -31,17 +30,9 @@ class BarbicAlgorithm final : public HapticAlgorithm {
 public:
   BarbicAlgorithm(const BarbicParams& p, const ToolGeometry& tool, double sdfVoxel, HapticScene& scene)
       : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.tipRadius)) {
-    // Shells live on the VolumeObject (shared, built once) or, for volumes
-    // added without a node, here. Built on the scene thread, not in step().
-    for (std::size_t i = 0; i < scene.volumeCount(); ++i) {
-      auto& v = scene.volume(i);
-      Shells s;
-      s.volume = &v;
-      s.epoch = v.millEpoch;
-      s.fine = shell(v, p.scale, s.ownedFine);
-      s.coarse = shell(v, 2 * p.scale, s.ownedCoarse);
-      shells_.push_back(std::move(s));
-    }
+    // The scene builds the shells on first request: here, on the scene thread, not in step().
+    shells_.resize(scene.volumeCount());
+    followMilling(scene);
   }
 
   std::string name() const override { return "BarbicRenderer"; }
@@ -119,41 +110,23 @@ public:
 
 private:
   struct Shells {
-    HapticScene::Volume* volume = nullptr;
-    PointShell* fine = nullptr;
-    PointShell* coarse = nullptr;
-    std::unique_ptr<PointShell> ownedFine, ownedCoarse;
-    std::uint64_t epoch = 0;
+    const HapticScene::Placement* placement = nullptr;
+    const PointShell* fine = nullptr;
+    const PointShell* coarse = nullptr;
   };
 
-  static PointShell* shell(HapticScene::Volume& v, int scale, std::unique_ptr<PointShell>& owned) {
-    if (v.node) {
-      const bool existed = v.node->hasPointShell(scale);
-      PointShell& s = v.node->pointShell(scale);
-      if (existed) s.rebuildAll(*v.voxels);  // it may have missed milling while no renderer used it
-      return &s;
-    }
-    owned = std::make_unique<PointShell>(*v.voxels, float(v.iso), scale);
-    return owned.get();
-  }
-
-  // The shells follow milling inside the haptic frame: one mill() call since
-  // the last frame is merged from its changed voxels; more than one (frames
-  // without a step) forces a full rebuild, which is slow but never wrong.
-  void followMilling(HapticScene&) {
-    for (Shells& s : shells_) {
-      const auto& v = *s.volume;
-      if (v.millEpoch == s.epoch) continue;
-      for (PointShell* sh : {s.fine, s.coarse}) {
-        if (v.millEpoch == s.epoch + 1) sh->update(*v.voxels, v.changed);
-        else sh->rebuildAll(*v.voxels);
-      }
-      s.epoch = v.millEpoch;
+  // Both shells of every volume, brought up to date with the milling since the
+  // last frame (the coarse one too, so a fallback never finds it stale).
+  void followMilling(HapticScene& scene) {
+    for (std::size_t i = 0; i < shells_.size(); ++i) {
+      shells_[i].placement = &scene.placement(i);
+      shells_[i].fine = &scene.pointShell(i, p_.scale);
+      shells_[i].coarse = &scene.pointShell(i, 2 * p_.scale);
     }
   }
 
   // The tool's oriented bounding box in a volume's local frame, grown by `margin` (world m).
-  Obb toolBox(const HapticScene::Volume& v, const Pose& tool, double margin) const {
+  Obb toolBox(const HapticScene::Placement& v, const Pose& tool, double margin) const {
     const glm::dmat3 R = glm::mat3_cast(tool.orientation);
     const glm::dvec3 lo = sdf_.boxLo() - margin, hi = sdf_.boxHi() + margin;
     const glm::dmat3 lin(v.worldToLocal);
@@ -170,7 +143,7 @@ private:
     const glm::dmat3 R = glm::mat3_cast(tool_.orientation), Rt = glm::transpose(R);
     int contacts = 0;
     for (const Shells& s : shells_) {
-      const auto& v = *s.volume;
+      const auto& v = *s.placement;
       const Obb box = toolBox(v, tool_, 0.0);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
       const PointShell* shell = s.fine;
@@ -210,7 +183,7 @@ private:
   // Whether any shell point lies within `margin` of the tool's box.
   bool materialWithin(double margin) const {
     for (const Shells& s : shells_) {
-      const Obb box = toolBox(*s.volume, tool_, margin);
+      const Obb box = toolBox(*s.placement, tool_, margin);
       if (s.fine->anyCandidate([&](const Aabb& b) { return box.overlaps(b); },
                                [&](const ShellPoint& p) { return box.contains(glm::dvec3(p.position)); }))
         return true;

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/volume/BlockChannel.h"
 
@@ -70,7 +70,7 @@ double LoopStats::p1Rate() const {
   return p99 > 0.0 ? 1e6 / p99 : 0.0;
 }
 
-HapticLoop::HapticLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm,
+HapticLoop::HapticLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorithm,
                        std::unique_ptr<DeviceDriver> driver, const LoopSettings& settings)
     : scene_(scene),
       switch_(std::move(algorithm)),
@@ -142,7 +142,7 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
   for (std::size_t i = 0; i < publishers_.size(); ++i) {
     if (!publishers_[i]) continue;
     const auto& v = scene_.volume(i);
-    static const std::vector<openvdb::Coord> kNone;
+    static const std::vector<BlockOrigin> kNone;
     const bool fresh = v.millEpoch != publishedEpoch_[i];
     publishedEpoch_[i] = v.millEpoch;
     // Publishing with nothing new retries blocks the full channel refused earlier.

@@ -36,7 +36,7 @@ namespace millsim {
 
 class BlockChannel;
 class BlockPublisher;
-class HapticScene;
+class VoxelScene;
 class HapticsDevice;
 
 // One frame, as logged (docs: the replay log format).
@@ -90,7 +90,7 @@ struct LoopStats {
 
 class HapticLoop {
 public:
-  HapticLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, std::unique_ptr<DeviceDriver> driver,
+  HapticLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, std::unique_ptr<DeviceDriver> driver,
              const LoopSettings& settings);
   ~HapticLoop();  // stops and joins a running thread
   HapticLoop(const HapticLoop&) = delete;
@@ -134,7 +134,7 @@ private:
   void frame(double t, double dt, double periodUs);
   void runRealTime(double duration);
 
-  HapticScene& scene_;
+  VoxelScene& scene_;
   RendererSwitch switch_;
   std::unique_ptr<DeviceDriver> driver_;
   LoopSettings settings_;

@@ -38,7 +38,7 @@ CompiledRun compileRun(Scene& scene, const std::string& rendererOverride) {
     throw std::runtime_error("the scene has no device node (e.g. <HandDevice> or <TrajectoryDevice>) to run");
   MillTool defaultTool;
   run.tool = run.device->tool.get() ? run.device->tool.get()->geometry() : defaultTool.geometry();
-  run.scene = std::make_unique<HapticScene>(scene);
+  run.scene = std::make_unique<VoxelScene>(scene);
   run.settings = LoopSettings::from(*run.device, run.tool);
   if (!rendererOverride.empty()) {
     run.algorithm = compileRenderer(scene, rendererOverride, run);

@@ -7,7 +7,7 @@
 
 #include "millsim/core/Scene.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 
 namespace millsim {
 
@@ -16,7 +16,7 @@ class HapticsDevice;
 struct CompiledRun {
   HapticsDevice* device = nullptr;
   ToolGeometry tool;
-  std::unique_ptr<HapticScene> scene;
+  std::unique_ptr<VoxelScene> scene;
   std::unique_ptr<HapticAlgorithm> algorithm;
   LoopSettings settings;
   std::string rendererName;

@@ -1,22 +1,25 @@
 #include "millsim/volume/BlockChannel.h"
 
+#include "millsim/volume/VoxelVolume.h"
+
 namespace millsim {
 
 namespace {
 // Index of voxel (x, y, z) inside a block, x fastest.
 constexpr int cell(int x, int y, int z) { return (z * 8 + y) * 8 + x; }
+openvdb::Coord coord(const BlockOrigin& o) { return {o.x, o.y, o.z}; }
 }  // namespace
 
-bool BlockChannel::tryPush(const VoxelVolume& volume, const openvdb::Coord& origin) {
+bool BlockChannel::tryPush(const VoxelVolume& volume, const BlockOrigin& origin) {
   const std::size_t head = head_.load(std::memory_order_relaxed);
   const std::size_t next = (head + 1) % slots_.size();
   if (next == tail_.load(std::memory_order_acquire)) return false;
   BlockUpdate& slot = slots_[head];
   slot.origin = origin;
-  if (const auto* leaf = volume.grid().tree().probeConstLeaf(origin)) {
+  if (const auto* leaf = volume.grid().tree().probeConstLeaf(coord(origin))) {
     for (int z = 0; z < 8; ++z)
       for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) slot.values[cell(x, y, z)] = leaf->getValue(openvdb::Coord(x, y, z) + origin);
+        for (int x = 0; x < 8; ++x) slot.values[cell(x, y, z)] = leaf->getValue(openvdb::Coord(x, y, z) + coord(origin));
   } else {
     slot.values.fill(volume.airValue());  // an all-air block has no leaf
   }
@@ -24,8 +27,11 @@ bool BlockChannel::tryPush(const VoxelVolume& volume, const openvdb::Coord& orig
   return true;
 }
 
-std::size_t BlockPublisher::publish(const std::vector<openvdb::Coord>& changed) {
-  for (const auto& o : changed) pending_.markVoxel(o.x(), o.y(), o.z());
+BlockPublisher::BlockPublisher(const VoxelVolume& volume, BlockChannel& channel)
+    : volume_(volume), channel_(channel), pending_(volume.dims()) {}
+
+std::size_t BlockPublisher::publish(const std::vector<BlockOrigin>& changed) {
+  for (const auto& o : changed) pending_.markVoxel(o.x, o.y, o.z);
   std::size_t pushed = 0;
   for (const auto& o : pending_.origins()) {
     if (!channel_.tryPush(volume_, o)) break;
@@ -40,7 +46,9 @@ VolumeReplica::VolumeReplica(const VoxelVolume& source)
                                             source.airValue())),
       changed_(source.dims()) {}
 
-const std::vector<openvdb::Coord>& VolumeReplica::apply(BlockChannel& channel) {
+VolumeReplica::~VolumeReplica() = default;
+
+const std::vector<BlockOrigin>& VolumeReplica::apply(BlockChannel& channel) {
   changed_.clear();
   auto acc = volume_->grid().getAccessor();
   const float air = volume_->airValue();
@@ -48,12 +56,12 @@ const std::vector<openvdb::Coord>& VolumeReplica::apply(BlockChannel& channel) {
     for (int z = 0; z < 8; ++z)
       for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) {
-          const openvdb::Coord c = u.origin + openvdb::Coord(x, y, z);
+          const openvdb::Coord c = coord(u.origin) + openvdb::Coord(x, y, z);
           const float v = u.values[cell(x, y, z)];
           // Only touch voxels that differ: unchanged air stays sparse.
           if (acc.getValue(c) != v && !(v <= air && !acc.isValueOn(c))) acc.setValueOnly(c, v);
         }
-    changed_.markVoxel(u.origin.x(), u.origin.y(), u.origin.z());
+    changed_.markVoxel(u.origin.x, u.origin.y, u.origin.z);
   });
   return changed_.origins();
 }

@@ -16,12 +16,13 @@
 #include <vector>
 
 #include "millsim/volume/DirtyBlocks.h"
-#include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
 
+class VoxelVolume;
+
 struct BlockUpdate {
-  openvdb::Coord origin;
+  BlockOrigin origin;
   std::array<float, 512> values;  // x fastest within the block
 };
 
@@ -30,7 +31,7 @@ public:
   explicit BlockChannel(std::size_t capacity) : slots_(capacity + 1) {}
 
   // Producer: copies the block at `origin` out of `volume`. False when full.
-  bool tryPush(const VoxelVolume& volume, const openvdb::Coord& origin);
+  bool tryPush(const VoxelVolume& volume, const BlockOrigin& origin);
   // Consumer: calls apply(const BlockUpdate&) for every block published so far; returns how many.
   template <class Apply> std::size_t drain(Apply&& apply) {
     std::size_t n = 0;
@@ -55,10 +56,10 @@ private:
 // The haptic side: remembers blocks not yet published and publishes what fits.
 class BlockPublisher {
 public:
-  BlockPublisher(const VoxelVolume& volume, BlockChannel& channel) : volume_(volume), channel_(channel), pending_(volume.dims()) {}
+  BlockPublisher(const VoxelVolume& volume, BlockChannel& channel);
   // Adds the newly changed blocks, then publishes as many pending blocks as the
   // channel takes. Returns the number still pending.
-  std::size_t publish(const std::vector<openvdb::Coord>& changed);
+  std::size_t publish(const std::vector<BlockOrigin>& changed);
   std::size_t pending() const { return pending_.origins().size(); }
 
 private:
@@ -71,9 +72,10 @@ private:
 class VolumeReplica {
 public:
   explicit VolumeReplica(const VoxelVolume& source);  // deep copy; call before milling starts
+  ~VolumeReplica();
   // Applies everything published; returns the origins of the changed blocks
   // (valid until the next call).
-  const std::vector<openvdb::Coord>& apply(BlockChannel& channel);
+  const std::vector<BlockOrigin>& apply(BlockChannel& channel);
   const VoxelVolume& volume() const { return *volume_; }
 
 private:

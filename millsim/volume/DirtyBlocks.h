@@ -9,9 +9,11 @@
 
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
-#include <openvdb/openvdb.h>
 
 namespace millsim {
+
+// An 8³ block by the index of its first voxel (an OpenVDB leaf origin).
+using BlockOrigin = glm::ivec3;
 
 class DirtyBlocks {
 public:
@@ -37,7 +39,7 @@ public:
   }
 
   // Leaf origins marked so far, in the order they were first marked.
-  const std::vector<openvdb::Coord>& origins() const { return list_; }
+  const std::vector<BlockOrigin>& origins() const { return list_; }
   bool empty() const { return list_.empty(); }
   // Bounding box (inclusive, voxel indices) of every voxel marked since the
   // last clear(): far tighter than the blocks, so consumers such as the point
@@ -58,12 +60,12 @@ public:
   }
 
 private:
-  void unmark(const openvdb::Coord& c) {
-    bits_[(std::size_t(c.z() >> kLog2) * blocks_.y + (c.y() >> kLog2)) * blocks_.x + (c.x() >> kLog2)] = false;
+  void unmark(const BlockOrigin& c) {
+    bits_[(std::size_t(c.z >> kLog2) * blocks_.y + (c.y >> kLog2)) * blocks_.x + (c.x >> kLog2)] = false;
   }
   glm::ivec3 blocks_{0};
   std::vector<bool> bits_;
-  std::vector<openvdb::Coord> list_;
+  std::vector<BlockOrigin> list_;
   glm::ivec3 voxelLo_{std::numeric_limits<int>::max()};
   glm::ivec3 voxelHi_{std::numeric_limits<int>::min()};
 };

@@ -193,11 +193,11 @@ void IsoSurfaceMesher::buildAll() {
   extractor_->accessor.reset();
 }
 
-std::vector<IsoSurfaceMesher::ChunkKey> IsoSurfaceMesher::update(const std::vector<openvdb::Coord>& dirtyLeafOrigins) {
+std::vector<IsoSurfaceMesher::ChunkKey> IsoSurfaceMesher::update(const std::vector<BlockOrigin>& dirtyLeafOrigins) {
   // A changed voxel moves the cells on both sides of it and, through the
   // central-difference gradient, the normals one sample further: pad 1.
   std::map<ChunkKey, char, KeyLess> dirty;
-  for (const Coord& o : dirtyLeafOrigins) {
+  for (const BlockOrigin& o : dirtyLeafOrigins) {
     int f[3], l[3];
     for (int a = 0; a < 3; ++a) chunkRange(o[a], o[a] + int(Leaf::DIM) - 1, chunkSize_, 1, chunkGrid_[a], f[a], l[a]);
     for (int z = f[2]; z <= l[2]; ++z)

@@ -30,6 +30,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "millsim/volume/DirtyBlocks.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
@@ -71,7 +72,7 @@ public:
   // given 8³ leaves changed (origins as openvdb reports them: multiples of 8).
   // Returns the keys of chunks whose mesh was replaced or removed; look each
   // up with chunk(): nullptr means it is now empty and its buffers can go.
-  std::vector<ChunkKey> update(const std::vector<openvdb::Coord>& dirtyLeafOrigins);
+  std::vector<ChunkKey> update(const std::vector<BlockOrigin>& dirtyLeafOrigins);
 
   // Only chunks that contain triangles.
   const ChunkMap& chunks() const { return chunks_; }

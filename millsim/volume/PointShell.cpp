@@ -1,5 +1,7 @@
 #include "millsim/volume/PointShell.h"
 
+#include "millsim/volume/VoxelVolume.h"
+
 #include <algorithm>
 
 #include <glm/geometric.hpp>
@@ -92,7 +94,8 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
 // (a 1-voxel plate averages to a third of its density at s = 3 and vanishes)
 // still yields shell points: a coarse shell may sit up to (s − 1)/2 voxels
 // proud of the surface, but it never lets the tool through material.
-float PointShell::coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const {
+template <class Accessor>
+float PointShell::coarse(const Accessor& acc, int I, int J, int K) const {
   if (scale_ == 1) return acc.getValue(openvdb::Coord(I, J, K));
   if (I < 0 || J < 0 || K < 0 || I >= coarseDims_.x || J >= coarseDims_.y || K >= coarseDims_.z)
     return volume_->airValue();
@@ -104,7 +107,8 @@ float PointShell::coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int
   return densest;
 }
 
-void PointShell::rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b) {
+template <class Accessor>
+void PointShell::rebuildBucket(const Accessor& acc, int b) {
   Bucket& bucket = buckets_[std::size_t(b)];
   count_ -= bucket.points.size();
   bucket.points.clear();
@@ -334,7 +338,7 @@ void PointShell::refreshSuper(int s) {
   }
 }
 
-int PointShell::update(const VoxelVolume& volume, const std::vector<openvdb::Coord>& dirty) {
+int PointShell::update(const VoxelVolume& volume, const std::vector<BlockOrigin>& dirty) {
   if (dirty.empty()) return 0;
   auto acc = volume.grid().getConstAccessor();
   // A changed voxel changes its coarse voxel and, through the neighbour test and
@@ -351,9 +355,9 @@ int PointShell::update(const VoxelVolume& volume, const std::vector<openvdb::Coo
     rebuildBucket(acc, b);
     ++rebuilt;
   };
-  for (const openvdb::Coord& o : dirty) {
-    const glm::ivec3 cLo = glm::max(glm::ivec3(o.x(), o.y(), o.z()) / scale_ - 1, glm::ivec3(0));
-    const glm::ivec3 cHi = glm::min((glm::ivec3(o.x(), o.y(), o.z()) + 7) / scale_ + 1, coarseDims_ - 1);
+  for (const BlockOrigin& o : dirty) {
+    const glm::ivec3 cLo = glm::max(o / scale_ - 1, glm::ivec3(0));
+    const glm::ivec3 cHi = glm::min((o + 7) / scale_ + 1, coarseDims_ - 1);
     const glm::ivec3 bLo = cLo / kBucket, bHi = cHi / kBucket;
     for (int bz = bLo.z; bz <= bHi.z; ++bz)
       for (int by = bLo.y; by <= bHi.y; ++by)

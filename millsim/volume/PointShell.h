@@ -26,12 +26,14 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
-#include <openvdb/openvdb.h>
 
 #include "millsim/volume/DirtyBlocks.h"
-#include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
+
+// Built from and updated against the voxels (PointShell.cpp reads them through
+// OpenVDB); queried by Algorithm #3, which sees only points and boxes.
+class VoxelVolume;
 
 struct ShellPoint {
   glm::vec3 position;  // volume-local frame, metres
@@ -67,7 +69,7 @@ public:
 
   // Rebuilds the buckets affected by changes in the given 8³ voxel blocks
   // (leaf origins, as DirtyBlocks reports them). Returns the number of buckets rebuilt.
-  int update(const VoxelVolume& volume, const std::vector<openvdb::Coord>& dirtyLeafOrigins);
+  int update(const VoxelVolume& volume, const std::vector<BlockOrigin>& dirtyLeafOrigins);
   // The fast path: recomputes only the coarse voxels within reach of the
   // voxels `dirty` marked (its voxel box); falls back to the block path above
   // when the box is larger than the scratch space reserved. Same result.
@@ -133,7 +135,8 @@ private:
     std::size_t count = 0;
   };
 
-  float coarse(const VoxelVolume::Grid::ConstAccessor& acc, int I, int J, int K) const;
+  // Accessor: the grid's const accessor (a template so that this header stays free of OpenVDB).
+  template <class Accessor> float coarse(const Accessor& acc, int I, int J, int K) const;
   // The shell points of coarse voxel (I, J, K) with value v and six
   // neighbours n (−x, +x, −y, +y, −z, +z): none inside or outside the
   // surface, two for a voxel-thin sheet (one per face), else one. `fine(i, j,
@@ -147,7 +150,7 @@ private:
   // From `at` (fine index units, inside) out along `outward` to the iso-surface
   // of the trilinear fine field, at most s fine voxels away.
   template <class Fine> glm::dvec3 ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward) const;
-  void rebuildBucket(const VoxelVolume::Grid::ConstAccessor& acc, int b);
+  template <class Accessor> void rebuildBucket(const Accessor& acc, int b);
   void refreshSuper(int s);
   void refreshSuperOfBucket(int b);
   bool updateRegion(const VoxelVolume& volume, glm::ivec3 voxelLo, glm::ivec3 voxelHi, int& rebuilt);

@@ -10,7 +10,7 @@
 #include "millsim/graphics/GlContext.h"
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/x3d/X3DLoader.h"
 
 using namespace millsim;
@@ -78,12 +78,12 @@ TEST(SceneRenderer, IncrementalUpdateDrawsWhatAFullRebuildDraws) {
   const RendererStats start = incremental->stats();
   ASSERT_GT(start.triangles, 1000u);
 
-  HapticScene hs(*r.scene);
+  VoxelScene hs(*r.scene);
   // Down from the top onto the crown until the burr bites.
   glm::dvec3 p(0.0, hs.volume(0).voxels->halfSize().y, 0.0);
   while (!hs.inside(p) && p.y > 0.0) p.y -= 1e-4;
   ASSERT_GT(hs.mill(p, 0.6e-3), 0.0);
-  const std::vector<openvdb::Coord> blocks = hs.volume(0).changed.origins();
+  const std::vector<BlockOrigin> blocks = hs.volume(0).changed.origins();
   incremental->volumeChanged(0, blocks);
   full->rebuildVolume(0);
 

@@ -14,7 +14,7 @@
 
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/BarbicSolve.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/VoxelVolume.h"
@@ -27,7 +27,7 @@ namespace {
 
 struct Rig {
   VoxelVolume volume;
-  HapticScene scene;
+  VoxelScene scene;
   std::unique_ptr<HapticAlgorithm> algorithm;
   Rig(VoxelVolume v, const BarbicRenderer& renderer) : volume(std::move(v)) {
     scene.addVolume(volume, glm::dmat4(1.0), kIso);

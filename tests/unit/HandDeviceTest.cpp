@@ -11,7 +11,7 @@
 
 #include "millsim/devices/HandDevice.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/VoxelVolume.h"
@@ -34,7 +34,7 @@ struct Trace {
   std::vector<double> forces;
 };
 
-Trace runClosedLoop(HapticScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, const Trajectory& t,
+Trace runClosedLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorithm, const Trajectory& t,
                   const HandModel& hand, double seconds) {
   LoopSettings s;
   s.timing = false;
@@ -64,7 +64,7 @@ double spread(const Trace& r, std::size_t a, std::size_t b) {
 }  // namespace
 
 TEST(HandDevice, FollowsItsTrajectoryInFreeSpace) {
-  HapticScene empty;
+  VoxelScene empty;
   SurfacePointRenderer renderer;
   const Trajectory t = line({0, 0.02, 0}, {0.01, 0.02, 0}, 1.0, 1.0);
   const Trace r = runClosedLoop(empty, renderer.compile(kTool, empty), t, HandModel{}, 2.0);
@@ -82,7 +82,7 @@ TEST(HandDevice, ComesToRestPressingOnASurfaceWithEveryRenderer) {
   for (const std::string& name : types) {
     const auto renderer = measure::makeRenderer({name, {}});
     VoxelVolume copy = slab();
-    HapticScene scene;
+    VoxelScene scene;
     scene.addVolume(copy, glm::dmat4(1.0), kIso);
     const Trace r = runClosedLoop(scene, renderer->compile(kTool, scene), t, HandModel{}, 3.0);
     ASSERT_EQ(r.forces.size(), 3000u) << name;
@@ -98,7 +98,7 @@ TEST(HandDevice, ComesToRestPressingOnASurfaceWithEveryRenderer) {
 }
 
 TEST(HandDevice, AReleasedHandleCoastsToAStop) {
-  HapticScene empty;
+  VoxelScene empty;
   SurfacePointRenderer renderer;
   HandModel hand;
   hand.releaseTime = 0.5;  // let go while moving at 20 mm/s

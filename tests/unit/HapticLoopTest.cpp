@@ -10,7 +10,7 @@
 
 #include "millsim/run/FrameLog.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/run/SpscRing.h"
 #include "millsim/run/TripleBuffer.h"
 #include "millsim/devices/TrajectoryDevice.h"
@@ -133,7 +133,7 @@ TEST(TripleBuffer, ReaderGetsTheNewestWholeValue) {
 }
 
 TEST(HapticLoop, ClampsRampsAndZeroesNonFiniteOutput) {
-  HapticScene scene;
+  VoxelScene scene;
   FakeDevice::Shared dev;
   {
     HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0, 20, 0)),
@@ -163,7 +163,7 @@ TEST(HapticLoop, ClampsRampsAndZeroesNonFiniteOutput) {
 }
 
 TEST(HapticLoop, StaleDeviceSamplesTripTheWatchdog) {
-  HapticScene scene;
+  VoxelScene scene;
   FakeDevice::Shared dev;
   dev.invalidFrom = 50;  // the device stops answering after 49 samples
   HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(1, 0, 0)), std::make_unique<FakeDevice>(dev),
@@ -179,7 +179,7 @@ TEST(HapticLoop, StaleDeviceSamplesTripTheWatchdog) {
 }
 
 TEST(HapticLoop, SwapsRenderersWithACrossFadeAndRetiresTheOldOne) {
-  HapticScene scene;
+  VoxelScene scene;
   FakeDevice::Shared dev;
   HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(1, 0, 0)), std::make_unique<FakeDevice>(dev),
                   settings());
@@ -193,7 +193,7 @@ TEST(HapticLoop, SwapsRenderersWithACrossFadeAndRetiresTheOldOne) {
 }
 
 TEST(HapticLoop, LogRowsCarryEveryFrameAndThePeriod) {
-  HapticScene scene;
+  VoxelScene scene;
   FakeDevice::Shared dev;
   HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0.5, 0, 0)), std::make_unique<FakeDevice>(dev),
                   settings());
@@ -211,7 +211,7 @@ TEST(HapticLoop, LogRowsCarryEveryFrameAndThePeriod) {
 }
 
 TEST(HapticLoop, RealTimeThreadRunsStopsOnDeviceFailureAndZeroesOutput) {
-  HapticScene scene;
+  VoxelScene scene;
   FakeDevice::Shared dev;
   dev.failAt = 300;
   LoopSettings s = settings();
@@ -247,7 +247,7 @@ TEST(HapticLoop, RealTimeThreadRunsStopsOnDeviceFailureAndZeroesOutput) {
 }
 
 TEST(HapticLoop, RejectsANonPositiveRate) {
-  HapticScene scene;
+  VoxelScene scene;
   FakeDevice::Shared dev;
   LoopSettings s = settings();
   s.rate = 0.0;
@@ -263,7 +263,7 @@ TEST(HapticLoop, RejectsANonPositiveRate) {
 TEST(HapticLoop, MillsInRealTimeWhileGraphicsAndSceneThreadsRead) {
   ToothPhantomOptions o = parsePhantomUrl("phantom:tooth?size=64,64,44");
   VoxelVolume volume = makeToothPhantom(o);
-  HapticScene scene;
+  VoxelScene scene;
   scene.addVolume(volume, glm::dmat4(1.0), 700.0);
   BlockChannel channel(256);
   VolumeReplica replica(volume);

@@ -253,7 +253,7 @@ INSTANTIATE_TEST_SUITE_P(IsoSurface, IsoSurfaceChunkSize, ::testing::Values(8, 1
 
 // Sets every voxel within `radius` of `centre` (index space) to air through
 // a grid accessor, as milling does, and returns the leaf origins it touched.
-std::vector<openvdb::Coord> carve(VoxelVolume& volume, glm::dvec3 centre, double radius) {
+std::vector<BlockOrigin> carve(VoxelVolume& volume, glm::dvec3 centre, double radius) {
   auto acc = volume.grid().getAccessor();
   std::set<openvdb::Coord> leaves;
   const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(centre - radius)), 0);
@@ -265,7 +265,9 @@ std::vector<openvdb::Coord> carve(VoxelVolume& volume, glm::dvec3 centre, double
           acc.setValueOff(openvdb::Coord(i, j, k), volume.airValue());
           leaves.insert(openvdb::Coord(i & ~7, j & ~7, k & ~7));
         }
-  return {leaves.begin(), leaves.end()};
+  std::vector<BlockOrigin> origins;
+  for (const openvdb::Coord& c : leaves) origins.emplace_back(c.x(), c.y(), c.z());
+  return origins;
 }
 
 // A point on sphere A's surface above or below (x, y).

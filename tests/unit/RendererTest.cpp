@@ -13,7 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/run/RendererSwitch.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
@@ -28,7 +28,7 @@ namespace {
 
 struct Rig {
   VoxelVolume volume;
-  HapticScene scene;
+  VoxelScene scene;
   std::unique_ptr<HapticAlgorithm> algorithm;
   Rig(VoxelVolume v, const HapticsRendererNode& renderer) : volume(std::move(v)) {
     scene.addVolume(volume, glm::dmat4(1.0), kIso);
@@ -329,7 +329,7 @@ TEST(RendererSwitch, FadesFromTheOldOutputToTheNewWithoutAJolt) {
   LineProxyRenderer one;
   SurfacePointRenderer two;
   VoxelVolume v = slab();
-  HapticScene scene;
+  VoxelScene scene;
   scene.addVolume(v, glm::dmat4(1.0), kIso);
   const Pose pressed = vertical({0, -0.2e-3, 0});
   auto first = one.compile(kTool, scene);

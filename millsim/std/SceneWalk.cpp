@@ -1,0 +1,51 @@
+#include "millsim/std/SceneWalk.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "millsim/core/Scene.h"
+#include "millsim/std/ClipPlane.h"
+#include "millsim/std/Transform.h"
+
+namespace millsim {
+
+namespace {
+
+using Visit = std::function<void(Node&, const WalkFrame&)>;
+
+void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, const Visit& visit);
+
+// Every node field of n; a ClipPlane among a field's nodes clips its siblings.
+void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& clips, const Visit& visit) {
+  for (Field* f : n.fields()) {
+    auto* nf = dynamic_cast<NodeFieldBase*>(f);
+    if (!nf) continue;
+    const auto children = nf->nodes();
+    std::vector<glm::dvec4> scoped = clips;
+    for (const auto& child : children)
+      if (auto* cp = dynamic_cast<ClipPlane*>(child.get()); cp && cp->enabled.get()) {
+        // Planes transform by the inverse transpose of the node's frame.
+        const glm::dvec4 p = glm::transpose(glm::inverse(m)) * glm::dvec4(cp->plane.get());
+        const double len = glm::length(glm::dvec3(p));
+        if (len > 0.0 && std::isfinite(len)) scoped.push_back(p / len);
+      }
+    for (const auto& child : children) walk(*child, m, scoped, visit);
+  }
+}
+
+void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, const Visit& visit) {
+  glm::dmat4 m = parent;
+  if (auto* t = dynamic_cast<Transform*>(&n)) m = parent * glm::dmat4(t->localMatrix());
+  visit(n, WalkFrame{m, &clips});
+  walkChildren(n, m, clips, visit);
+}
+
+}  // namespace
+
+void walkScene(const Scene& scene, const Visit& visit) {
+  walkChildren(*scene.root, glm::dmat4(1.0), {}, visit);
+}
+
+}  // namespace millsim

@@ -1,0 +1,106 @@
+#include "millsim/volume/VoxelScene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/matrix.hpp>
+
+#include "millsim/volume/PlacedVolumes.h"
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/VolumeObject.h"
+
+namespace millsim {
+
+VoxelScene::VoxelScene() = default;
+VoxelScene::~VoxelScene() = default;
+
+VoxelScene::VoxelScene(const Scene& scene) {
+  for (const PlacedVolume& p : placedVolumes(scene))
+    addVolume(*p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.node);
+}
+
+void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, VolumeObject* node) {
+  // index = (local / voxelSize) + halfExtent, local = worldToLocal · world.
+  const glm::dmat4 worldToLocal = glm::inverse(m);
+  const glm::dvec3 inv = 1.0 / vox.voxelSize();
+  const glm::dmat3 lin =
+      glm::dmat3(glm::dvec3(inv.x, 0, 0), glm::dvec3(0, inv.y, 0), glm::dvec3(0, 0, inv.z)) * glm::dmat3(worldToLocal);
+  const glm::dvec3 offset = glm::dvec3(worldToLocal[3]) * inv + vox.localToIndex(glm::dvec3(0.0));
+  const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(m))));
+  const bool millable = node ? node->millable.get() : true;
+  volumes_.push_back(std::unique_ptr<Volume>(new Volume{node, millable, &vox, Placement{m, worldToLocal, iso, scale},
+                                                        lin, offset, VolumeSampler(vox), Miller(vox, float(iso)),
+                                                        DirtyBlocks(vox.dims())}));
+  const glm::dvec3 h = vox.voxelSize() * scale;
+  const double smallest = std::min({h.x, h.y, h.z});
+  voxelSize_ = voxelSize_ > 0.0 ? std::min(voxelSize_, smallest) : smallest;
+}
+
+double VoxelScene::field(const glm::dvec3& world) const {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const auto& v : volumes_) {
+    const glm::dvec3 idx = v->worldToIndexLinear * world + v->worldToIndexOffset;
+    best = std::max(best, double(v->sampler.density(idx)) - v->placement.iso);
+  }
+  return volumes_.empty() ? -1.0 : best;
+}
+
+glm::dvec3 VoxelScene::gradient(const glm::dvec3& world) const {
+  double best = -std::numeric_limits<double>::infinity();
+  glm::dvec3 g(0.0);
+  for (const auto& v : volumes_) {
+    const glm::dvec3 idx = v->worldToIndexLinear * world + v->worldToIndexOffset;
+    const double s = double(v->sampler.density(idx)) - v->placement.iso;
+    if (s > best) {
+      best = s;
+      // d s/d world = (d index/d world)ᵀ · d s/d index
+      g = glm::transpose(v->worldToIndexLinear) * v->sampler.gradient(idx);
+    }
+  }
+  return g;
+}
+
+const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
+  Volume& v = *volumes_.at(volume);
+  for (Shell& s : shells_) {
+    if (s.volume != volume || s.scale != scale) continue;
+    // Follow milling: one mill() since the last look is merged from its
+    // changed voxels; more than one forces a full rebuild, slow but never wrong.
+    if (v.millEpoch != s.epoch) {
+      if (v.millEpoch == s.epoch + 1) s.shell->update(*v.voxels, v.changed);
+      else s.shell->rebuildAll(*v.voxels);
+      s.epoch = v.millEpoch;
+    }
+    return *s.shell;
+  }
+  // First request (compile time): a node keeps its shells between runs, and a
+  // kept one may have missed milling while no renderer used it.
+  Shell s{volume, scale, nullptr, nullptr, v.millEpoch};
+  if (v.node) {
+    const bool existed = v.node->hasPointShell(scale);
+    s.shell = &v.node->pointShell(scale);
+    if (existed) s.shell->rebuildAll(*v.voxels);
+  } else {
+    s.owned = std::make_unique<PointShell>(*v.voxels, float(v.placement.iso), scale);
+    s.shell = s.owned.get();
+  }
+  shells_.push_back(std::move(s));
+  return *shells_.back().shell;
+}
+
+double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
+  double removed = 0.0;
+  for (auto& v : volumes_) {
+    if (!v->millable) continue;
+    const glm::dvec3 local = glm::dvec3(v->placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
+    // Clearing first keeps `changed` to this call's blocks (O(blocks), no allocation).
+    v->changed.clear();
+    const StampResult res = v->miller.stamp(local, radius / v->placement.worldPerLocal, v->changed);
+    removed += res.removedVolume;
+    if (!v->changed.empty()) ++v->millEpoch;
+  }
+  return removed;
+}
+
+}  // namespace millsim

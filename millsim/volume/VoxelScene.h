@@ -1,0 +1,85 @@
+#pragma once
+// VoxelScene: the HapticScene over voxel volumes (OpenVDB) — what a run hands
+// its renderer, and what the run itself mills and publishes from. Built on the
+// scene thread from the Scene's VolumeObjects (placedVolumes(), the same walk
+// graphics uses, so volume i is the same volume on both sides), then owned and
+// used by one haptic thread: it holds that thread's OpenVDB accessors.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+
+#include "millsim/haptics/HapticScene.h"
+#include "millsim/volume/DirtyBlocks.h"
+#include "millsim/volume/Milling.h"
+#include "millsim/volume/VolumeSampler.h"
+
+namespace millsim {
+
+class Scene;
+class VolumeObject;
+class PointShell;
+
+class VoxelScene final : public HapticScene {
+public:
+  struct Volume {
+    VolumeObject* node;  // may be null for volumes added directly (tests, tools)
+    bool millable;
+    VoxelVolume* voxels;
+    Placement placement;
+    glm::dmat3 worldToIndexLinear;  // the linear part of world → index
+    glm::dvec3 worldToIndexOffset;
+    VolumeSampler sampler;
+    Miller miller;
+    // The 8³ blocks changed by the latest mill() call that changed this
+    // volume, and a counter bumped by every such call. Consumers on the haptic
+    // thread (the point shells, the graphics publisher) remember the epoch
+    // they last saw and update from `changed` when it moved on.
+    DirtyBlocks changed;
+    std::uint64_t millEpoch = 0;
+  };
+
+  VoxelScene();
+  // Collects every loaded VolumeObject under the scene's Transforms.
+  explicit VoxelScene(const Scene& scene);
+  ~VoxelScene() override;
+  VoxelScene(const VoxelScene&) = delete;
+  VoxelScene& operator=(const VoxelScene&) = delete;
+
+  // Adds a volume placed by localToWorld; `node` (optional) supplies the
+  // millable flag and caches the point shells between runs.
+  void addVolume(VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso, VolumeObject* node = nullptr);
+
+  Volume& volume(std::size_t i) { return *volumes_[i]; }
+  const Volume& volume(std::size_t i) const { return *volumes_[i]; }
+
+  // HapticScene
+  std::size_t volumeCount() const override { return volumes_.size(); }
+  const Placement& placement(std::size_t i) const override { return volumes_[i]->placement; }
+  double field(const glm::dvec3& world) const override;
+  glm::dvec3 gradient(const glm::dvec3& world) const override;
+  double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
+  const PointShell& pointShell(std::size_t volume, int scale) override;
+
+  // Removes material with a burr sphere at a world point (every millable
+  // volume). Returns the volume removed (m³, in each volume's local units).
+  // Volumes that changed get a new `changed` list and `millEpoch`.
+  double mill(const glm::dvec3& centreWorld, double radius);
+
+private:
+  // A point shell in use by this scene, and the mill epoch it has caught up with.
+  struct Shell {
+    std::size_t volume;
+    int scale;
+    PointShell* shell;
+    std::unique_ptr<PointShell> owned;  // for volumes without a node
+    std::uint64_t epoch;
+  };
+
+  std::vector<std::unique_ptr<Volume>> volumes_;
+  std::vector<Shell> shells_;
+  double voxelSize_ = 0.0;  // 0 until a volume is added
+};
+
+}  // namespace millsim

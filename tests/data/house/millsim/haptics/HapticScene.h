@@ -1,0 +1,3 @@
+#pragma once
+// Fixture: the renderer contract reaches OpenVDB.
+#include <openvdb/openvdb.h>

@@ -1,0 +1,2 @@
+// Fixture: a renderer reaches the haptic loop.
+#include "millsim/run/HapticLoop.h"
