@@ -5,7 +5,7 @@
 // to the device, and publishes the frame for logs and graphics.
 //
 // The same frame() serves both clocks:
-//  - runSimulated: frames at t = n / rate on the calling thread (replay, tests);
+//  - stepSimulated: one frame at t = n / rate on the calling thread (replay, tests);
 //    bit-reproducible because nothing reads the wall clock unless timing is on;
 //  - start: a dedicated real-time thread, sleep-then-spin to each deadline.
 //

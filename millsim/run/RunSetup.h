@@ -31,7 +31,8 @@ HapticsDevice* findDevice(const Scene& scene);
 CompiledRun compileRun(Scene& scene, const std::string& rendererOverride = {});
 
 // A default-configured algorithm of the registered renderer type `typeName`
-// for a compiled run (the live renderer swap and --renderer use it).
+// for a compiled run (--renderer uses it; a live swap would hand its result to
+// HapticLoop::replaceRenderer, which nothing in the millsim command calls yet).
 std::unique_ptr<HapticAlgorithm> compileRenderer(Scene& scene, const std::string& typeName, const CompiledRun& run);
 
 // Copies a frame into the device node's output fields (devicePosition,

@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the VTK-based volume readers (MetaImage, VTI): turning VTK's
 // printed errors into exception text, and converting its scalar arrays.
-// Internal to nodes/volume; includes VTK headers, so keep it out of public headers.
+// Internal to millsim/volume (listed in cmake/private-headers.txt): includes VTK headers.
 #include <string>
 #include <vector>
 
