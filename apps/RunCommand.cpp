@@ -18,10 +18,11 @@
 #include "ImageArgs.h"
 #include "RunGraphics.h"
 #include "millsim/core/NodeRegistry.h"
-#include "millsim/run/FrameLog.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/FrameLog.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/volume/VolumeObject.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/x3d/X3DLoader.h"
 
 namespace millsim::app {

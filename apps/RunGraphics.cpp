@@ -6,8 +6,8 @@
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/GraphicsModule.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/BlockChannel.h"
+#include "millsim/volume/VoxelScene.h"
 
 namespace millsim::app {
 

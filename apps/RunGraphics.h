@@ -11,8 +11,8 @@
 #include <thread>
 #include <vector>
 
-#include "millsim/run/HapticLoop.h"
 #include "millsim/haptics/MillTool.h"
+#include "millsim/run/HapticLoop.h"
 
 namespace millsim {
 class BlockChannel;

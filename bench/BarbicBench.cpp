@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "millsim/renderers/BarbicRenderer.h"
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
 

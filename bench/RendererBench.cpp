@@ -9,10 +9,10 @@
 #include <cmath>
 #include <vector>
 
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "millsim/devices/HandDevice.h"
-#include "millsim/run/HapticLoop.h"
 #include "millsim/devices/Trajectory.h"
+#include "millsim/run/HapticLoop.h"
 
 namespace millsim::measure {
 

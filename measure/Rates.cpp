@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VoxelScene.h"
 
 namespace millsim::measure {
 

@@ -3,12 +3,12 @@
 // initialisers.
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/AresDevice.h"
-#include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/devices/HandDevice.h"
-#include "millsim/renderers/LineProxyRenderer.h"
-#include "millsim/haptics/MillTool.h"
-#include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/devices/TrajectoryDevice.h"
+#include "millsim/haptics/MillTool.h"
+#include "millsim/renderers/BarbicRenderer.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/volume/VolumeObject.h"
 
 namespace millsim {

@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "millsim/core/NodeKinds.h"
+#include "millsim/devices/Trajectory.h"
 #include "millsim/driver/DeviceDriver.h"
 #include "millsim/haptics/HapticsRenderer.h"
-#include "millsim/devices/Trajectory.h"
 #include "millsim/haptics/MillTool.h"
 
 namespace millsim {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "millsim/driver/AresProtocol.h"
-#include "millsim/driver/Transport.h"
 #include "millsim/driver/DeviceDriver.h"
+#include "millsim/driver/Transport.h"
 
 namespace millsim {
 

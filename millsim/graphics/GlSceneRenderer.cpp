@@ -8,13 +8,13 @@
 #include <GL/glext.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "millsim/core/Scene.h"
 #include "millsim/graphics/GlContext.h"
 #include "millsim/graphics/GlMesh.h"
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/SceneRenderer.h"
 #include "millsim/graphics/ShadedProgram.h"
 #include "millsim/graphics/VolumeMesh.h"
-#include "millsim/core/Scene.h"
 #include "millsim/std/Viewpoint.h"
 #include "millsim/volume/VoxelVolume.h"
 

@@ -8,8 +8,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include "millsim/renderers/BarbicSolve.h"
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/renderers/BarbicSolve.h"
 #include "millsim/renderers/Obb.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/PointShell.h"

@@ -8,9 +8,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/volume/BlockChannel.h"
+#include "millsim/volume/VoxelScene.h"
 
 namespace millsim {
 

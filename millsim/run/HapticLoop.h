@@ -24,10 +24,10 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "millsim/driver/SafetyLayer.h"
 #include "millsim/driver/DeviceDriver.h"
-#include "millsim/run/FrameHistogram.h"
+#include "millsim/driver/SafetyLayer.h"
 #include "millsim/haptics/HapticsRenderer.h"
+#include "millsim/run/FrameHistogram.h"
 #include "millsim/run/RendererSwitch.h"
 #include "millsim/run/SpscRing.h"
 #include "millsim/run/TripleBuffer.h"

@@ -3,10 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "millsim/run/FrameLog.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/TrajectoryDevice.h"
+#include "millsim/run/FrameLog.h"
 #include "millsim/volume/VolumeObject.h"
+#include "millsim/volume/VoxelScene.h"
 
 namespace millsim {
 

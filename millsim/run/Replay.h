@@ -12,9 +12,9 @@
 #include <string>
 
 #include "millsim/core/Scene.h"
+#include "millsim/devices/Trajectory.h"
 #include "millsim/haptics/HapticsRenderer.h"
 #include "millsim/run/RunSetup.h"
-#include "millsim/devices/Trajectory.h"
 
 namespace millsim {
 

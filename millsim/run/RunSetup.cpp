@@ -6,8 +6,14 @@
 
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/volume/VoxelScene.h"
 
 namespace millsim {
+
+CompiledRun::CompiledRun() = default;
+CompiledRun::~CompiledRun() = default;
+CompiledRun::CompiledRun(CompiledRun&&) noexcept = default;
+CompiledRun& CompiledRun::operator=(CompiledRun&&) noexcept = default;
 
 HapticsDevice* findDevice(const Scene& scene) {
   auto devices = scene.nodesOfType<HapticsDevice>();

@@ -7,13 +7,20 @@
 
 #include "millsim/core/Scene.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/volume/VoxelScene.h"
 
 namespace millsim {
 
 class HapticsDevice;
+class VoxelScene;  // millsim/volume/VoxelScene.h: include it to use run.scene
 
 struct CompiledRun {
+  // Out of line: VoxelScene is only declared here, so that the run set-up does
+  // not bring OpenVDB into everything that includes it.
+  CompiledRun();
+  ~CompiledRun();
+  CompiledRun(CompiledRun&&) noexcept;
+  CompiledRun& operator=(CompiledRun&&) noexcept;
+
   HapticsDevice* device = nullptr;
   ToolGeometry tool;
   std::unique_ptr<VoxelScene> scene;

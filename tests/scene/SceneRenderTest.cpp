@@ -18,10 +18,10 @@
 #include "ImageCompare.h"
 #include "SceneProbe.h"
 #include "millsim/core/NodeRegistry.h"
-#include "millsim/graphics/SceneRenderer.h"
 #include "millsim/devices/HapticsDevice.h"
-#include "millsim/run/Replay.h"
 #include "millsim/devices/TrajectoryDevice.h"
+#include "millsim/graphics/SceneRenderer.h"
+#include "millsim/run/Replay.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "millsim/x3d/X3DLoader.h"
 

@@ -14,9 +14,9 @@
 
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/BarbicSolve.h"
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/PointShell.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "AnalyticScenes.h"
 

@@ -9,13 +9,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "measure/Renderers.h"
 #include "millsim/devices/HandDevice.h"
-#include "millsim/run/HapticLoop.h"
-#include "millsim/volume/VoxelScene.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/VoxelVolume.h"
-#include "measure/Renderers.h"
 #include "AnalyticScenes.h"
 
 using namespace millsim;

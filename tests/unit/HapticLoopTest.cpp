@@ -8,15 +8,15 @@
 
 #include <glm/geometric.hpp>
 
-#include "millsim/run/FrameLog.h"
-#include "millsim/run/HapticLoop.h"
-#include "millsim/volume/VoxelScene.h"
-#include "millsim/run/SpscRing.h"
-#include "millsim/run/TripleBuffer.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/run/FrameLog.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/run/SpscRing.h"
+#include "millsim/run/TripleBuffer.h"
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
 

@@ -13,12 +13,12 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "millsim/volume/VoxelScene.h"
-#include "millsim/renderers/LineProxyRenderer.h"
-#include "millsim/run/RendererSwitch.h"
-#include "millsim/renderers/SurfacePointRenderer.h"
-#include "millsim/volume/VoxelVolume.h"
 #include "measure/Renderers.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/run/RendererSwitch.h"
+#include "millsim/volume/VoxelScene.h"
+#include "millsim/volume/VoxelVolume.h"
 #include "AnalyticScenes.h"
 
 using namespace millsim;

@@ -9,11 +9,11 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "measure/Renderers.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/run/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
-#include "measure/Renderers.h"
 
 using namespace millsim;
 
