@@ -63,7 +63,7 @@ int runAccuracy(const AccuracyArgs& a) {
            << fmt(convergenceOrder(hs, te), 2) << " |\n";
     // Each resolution field, at one voxel size.
     auto probe = makeRenderer({type, {}});
-    for (const auto& [field, values] : resolutionSweeps(type)) {
+    for (const auto& [field, values] : probe->traits().resolutionSweeps) {
       if (!probe->field(field)) {
         std::cerr << type << " has no field '" << field << "': its resolution sweep is skipped\n";
         continue;
@@ -158,8 +158,8 @@ int runZWidth(const ZWidthArgs& a) {
   const std::vector<double> values = sqrt2Steps(a.from, a.to);
   std::vector<ZWidthResult> rows;
   for (const std::string& type : types) {
-    if (stiffnessField(type).empty()) {
-      std::cerr << type << ": no known stiffness field, skipped\n";
+    if (rendererTraits(type).stiffnessField.empty()) {
+      std::cerr << type << ": declares no stiffness field (RendererTraits::stiffnessField), skipped\n";
       continue;
     }
     for (const HandModel& hand : hands) {

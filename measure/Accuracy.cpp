@@ -244,26 +244,14 @@ AccuracyRow summarise(const std::string& type, const std::string& res, double h,
 
 }  // namespace
 
-ReferenceKind referenceKind(const std::string& type) {
-  if (type == "LineProxyRenderer") return ReferenceKind::Proxy;
-  if (type == "SurfacePointRenderer") return ReferenceKind::Penalty;
-  return ReferenceKind::Coupling;
-}
-
-std::vector<std::pair<std::string, std::vector<std::string>>> resolutionSweeps(const std::string& type) {
-  if (type == "LineProxyRenderer") return {{"vertexCount", {"6", "11", "26", "51", "101", "251"}}};
-  if (type == "SurfacePointRenderer")
-    return {{"sphereVertices", {"8", "16", "24", "48", "96", "192"}}, {"slices", {"5", "10", "20", "50", "100"}}};
-  if (type == "BarbicRenderer") return {{"pointShellScale", {"1", "2", "3"}}};
-  return {};
-}
-
 std::vector<AccuracyRow> measureAccuracy(const RendererSpec& spec, double h, const AccuracyConfig& cfg,
                                          const std::string& resolution) {
   auto node = makeRenderer(spec);
   const ToolGeometry tool = standardTool();
-  const ReferenceKind kind = referenceKind(spec.type);
-  const double k = fieldValue(*node, {"springConstant", "couplingStiffness", "stiffness"}, 1000.0);
+  const RendererTraits traits = node->traits();
+  const ReferenceKind kind = traits.reference;
+  // The reference's spring: the declared stiffness field's value (1000 N/m if none is declared).
+  const double k = traits.stiffnessField.empty() ? 1000.0 : fieldValue(*node, {traits.stiffnessField}, 1000.0);
   const double tipOffset = contactOffset(*node, tool, h), shaftOffset = tipOffset * tool.shaftRadius / tool.tipRadius;
   std::vector<AccuracyRow> rows;
   Samples all;

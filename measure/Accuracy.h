@@ -10,15 +10,10 @@
 
 namespace millsim::measure {
 
-// How the reference of a renderer type is computed from the exact geometry.
-enum class ReferenceKind {
-  Proxy,    // Algorithm #1: k·(exact proxy − device); torque from eq. 7–11 at the exact shaft intersection
-  Penalty,  // Algorithm #2: eq. 14–21 in the continuum limit (dense quadrature, exact penetrations)
-  Coupling  // Algorithm #3 and unknown types: k·(burr centre pushed out of the exact surface − device)
-};
-ReferenceKind referenceKind(const std::string& type);
-// Resolution fields swept per type (by field name), e.g. vertexCount, or sphereVertices and slices.
-std::vector<std::pair<std::string, std::vector<std::string>>> resolutionSweeps(const std::string& type);
+// How a renderer's reference is computed from the exact geometry, and which
+// resolution fields are swept, is declared by the renderer node
+// (RendererTraits::reference and ::resolutionSweeps; rendererTraits(type)).
+using ReferenceKind = millsim::ReferenceKind;
 
 struct AccuracyConfig {
   std::vector<std::string> scenes{"half-space", "sphere", "cavity", "edge", "plate"};

@@ -55,6 +55,8 @@ std::shared_ptr<HapticsRendererNode> makeRenderer(const RendererSpec& spec) {
   return node;
 }
 
+RendererTraits rendererTraits(const std::string& type) { return makeRenderer({type, {}})->traits(); }
+
 ToolGeometry standardTool() { return ToolGeometry{0.5e-3, 0.25e-3, 5e-3}; }
 
 namespace {

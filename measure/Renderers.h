@@ -27,6 +27,10 @@ bool isRegistered(const std::string& type);
 // the unknown type or field, or the value the field refused.
 std::shared_ptr<HapticsRendererNode> makeRenderer(const RendererSpec& spec);
 
+// What a renderer type declares about itself (millsim/haptics/RendererTraits.h):
+// makeRenderer({type, {}})->traits(). Throws like makeRenderer for unknown types.
+RendererTraits rendererTraits(const std::string& type);
+
 // The tool every suite uses: a 1 mm round burr on a 0.5 mm shaft.
 ToolGeometry standardTool();
 

@@ -5,16 +5,11 @@
 
 namespace millsim::measure {
 
-std::string stiffnessField(const std::string& type) {
-  if (type == "LineProxyRenderer" || type == "SurfacePointRenderer") return "springConstant";
-  if (type == "BarbicRenderer") return "couplingStiffness";
-  return "";
-}
-
 double defaultStiffness(const std::string& type) {
-  const std::string name = stiffnessField(type);
-  if (name.empty()) throw std::runtime_error("no stiffness field known for renderer type '" + type + "'");
   auto probe = makeRenderer({type, {}});
+  const std::string name = probe->traits().stiffnessField;
+  if (name.empty())
+    throw std::runtime_error("renderer type '" + type + "' declares no stiffness field (RendererTraits::stiffnessField)");
   const Field* f = probe->field(name);
   if (!f) throw std::runtime_error(type + " has no field '" + name + "'");
   return std::stod(f->toString());
@@ -39,7 +34,7 @@ std::vector<Scenario> zWidthScenarios() {
 ZWidthResult zWidthSweep(const std::string& type, const HandModel& hand, const std::vector<double>& values) {
   ZWidthResult r;
   r.renderer = type;
-  r.field = stiffnessField(type);
+  r.field = rendererTraits(type).stiffnessField;
   r.hand = describe(hand);
   r.defaultStiffness = defaultStiffness(type);
   r.renderedAtDefault = renderedStiffness(*makeRenderer({type, {}}), standardTool(), 0.1e-3);

@@ -28,11 +28,12 @@ struct ZWidthResult {
   std::vector<ZWidthPoint> points;
 };
 
-// The field that sets a renderer's stiffness: the proxy spring of #1, the
-// penalty spring of #2, the virtual coupling of #3. Empty for unknown types.
-std::string stiffnessField(const std::string& type);
+// The field swept is the one the renderer declares as its stiffness
+// (RendererTraits::stiffnessField): the proxy spring of #1, the penalty spring
+// of #2, the virtual coupling of #3.
 
-// The value of that field on a default node of `type`; throws for unknown types.
+// The value of that field on a default node of `type`; throws for unknown
+// types and for types that declare no stiffness field.
 double defaultStiffness(const std::string& type);
 
 // from, from·√2, from·2, ... up to and including `to` (rounded to 3 significant digits).

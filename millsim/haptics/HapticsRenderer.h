@@ -12,6 +12,7 @@
 
 #include "millsim/core/Node.h"
 #include "millsim/haptics/MillTool.h"
+#include "millsim/haptics/RendererTraits.h"
 #include "millsim/math/Pose.h"
 
 namespace millsim {
@@ -60,6 +61,10 @@ class HapticsRendererNode : public Node {
 public:
   static constexpr std::string_view kindName = "a haptics renderer (LineProxyRenderer, SurfacePointRenderer, ...)";
   virtual std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const = 0;
+  // What measure/ and the tests need to know about this type (RendererTraits.h).
+  // The default, for renderers that declare nothing: no stiffness field, no
+  // resolution sweeps, the Coupling reference, not constraining the tool.
+  virtual RendererTraits traits() const { return {}; }
 };
 
 // Replaces NaN/Inf in an output with zero force and torque and flags it: no

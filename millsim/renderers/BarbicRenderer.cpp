@@ -227,4 +227,15 @@ std::unique_ptr<HapticAlgorithm> BarbicRenderer::compile(const ToolGeometry& too
   return std::make_unique<BarbicAlgorithm>(p, tool, double(sdfVoxelSize.get()), scene);
 }
 
+// A tool body on a virtual coupling: the stiffness is the coupling, the
+// resolution the point shell's scale, and the tool body never enters material.
+RendererTraits BarbicRenderer::traits() const {
+  RendererTraits t;
+  t.stiffnessField = "couplingStiffness";
+  t.resolutionSweeps = {{"pointShellScale", {"1", "2", "3"}}};
+  t.reference = ReferenceKind::Coupling;
+  t.constrainsTool = true;
+  return t;
+}
+
 }  // namespace millsim

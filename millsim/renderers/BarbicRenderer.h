@@ -17,6 +17,7 @@ class BarbicRenderer : public HapticsRendererNode {
 public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
+  RendererTraits traits() const override;
 
   SFInt32 pointShellScale{this, "pointShellScale", Access::InitializeOnly, 3,
                           "Point shell scaling factor: 1 is every surface voxel; the paper chose 3.", Range::atLeast(1)};

@@ -246,4 +246,15 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
       proxyIterations.get());
 }
 
+// A proxy on a spring: the stiffness is its spring, the resolution its
+// centreline vertices, and the proxy never enters material.
+RendererTraits LineProxyRenderer::traits() const {
+  RendererTraits t;
+  t.stiffnessField = "springConstant";
+  t.resolutionSweeps = {{"vertexCount", {"6", "11", "26", "51", "101", "251"}}};
+  t.reference = ReferenceKind::Proxy;
+  t.constrainsTool = true;
+  return t;
+}
+
 }  // namespace millsim

@@ -13,6 +13,7 @@ class LineProxyRenderer : public HapticsRendererNode {
 public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
+  RendererTraits traits() const override;
 
   SFInt32 vertexCount{this, "vertexCount", Access::InitializeOnly, 51,
                       "Vertices on the centreline, the burr centre included (paper: 51).", Range::atLeast(2)};

@@ -143,4 +143,16 @@ std::unique_ptr<HapticAlgorithm> SurfacePointRenderer::compile(const ToolGeometr
                                                  double(springConstant.get()));
 }
 
+// Penalty forces on points of the tool: the stiffness is the shared spring,
+// the resolutions the burr and shaft points; nothing holds the tool outside.
+RendererTraits SurfacePointRenderer::traits() const {
+  RendererTraits t;
+  t.stiffnessField = "springConstant";
+  t.resolutionSweeps = {{"sphereVertices", {"8", "16", "24", "48", "96", "192"}},
+                        {"slices", {"5", "10", "20", "50", "100"}}};
+  t.reference = ReferenceKind::Penalty;
+  t.constrainsTool = false;
+  return t;
+}
+
 }  // namespace millsim

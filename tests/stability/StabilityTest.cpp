@@ -23,10 +23,8 @@ using namespace millsim::measure;
 namespace {
 
 // Proxy and coupling methods must never tunnel; penalty methods are measured.
-bool mustHold(const std::string& type) {
-  static const std::set<std::string> kConstrained{"LineProxyRenderer", "BarbicRenderer"};
-  return kConstrained.count(type) > 0;
-}
+// The renderer says which it is (RendererTraits::constrainsTool).
+bool mustHold(const std::string& type) { return rendererTraits(type).constrainsTool; }
 
 void print(const ScenarioResult& r) {
   std::cout << std::setprecision(3) << r.renderer << " | " << r.scenario << " | " << r.hand << " | minE "
@@ -181,7 +179,8 @@ TEST_P(Stability, SoakPassiveOverTheWholeHandGrid) {
 // has exactly this margin there.
 TEST_P(Stability, DefaultStiffnessHasTwofoldMargin) {
   const std::string type = GetParam();
-  ASSERT_FALSE(stiffnessField(type).empty()) << type << ": name its stiffness field in measure/ZWidth.cpp";
+  ASSERT_FALSE(rendererTraits(type).stiffnessField.empty())
+      << type << ": declare its stiffness field in traits() (RendererTraits::stiffnessField)";
   for (const HandModel& hand : handCorners()) {
     const double k = defaultStiffness(type);
     const ZWidthResult r = zWidthSweep(type, hand, {k, 2.0 * k});
