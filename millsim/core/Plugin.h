@@ -18,8 +18,10 @@
 
 namespace millsim {
 
-// Bumped whenever Node, Field or NodeRegistry change layout incompatibly.
-inline constexpr int kPluginAbiVersion = 1;
+// Bumped whenever a class a plugin derives from or calls changes layout
+// incompatibly (Node, Field, NodeRegistry, the renderer contract, the device
+// nodes). 2: HapticScene became an interface and HapticsRendererNode gained traits().
+inline constexpr int kPluginAbiVersion = 2;
 
 struct PluginError : std::runtime_error {
   using std::runtime_error::runtime_error;
