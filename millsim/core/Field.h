@@ -51,6 +51,8 @@ public:
   virtual std::string toString() const = 0;
   // Extra constraint shown in docs and checked on set ("> 0"); empty if none.
   virtual std::string constraint() const { return {}; }
+  // The bounds every number of the value must meet; null for fields that take no numbers or declare none.
+  virtual const Range* range() const { return nullptr; }
 
   // Routes. routeTo checks that types match and that access allows it.
   void routeTo(Field& destination);
@@ -126,12 +128,14 @@ public:
     }
   }
   std::string constraint() const override { return range_ ? range_->str() : std::string(); }
+  const Range* range() const override { return range_ ? &*range_ : nullptr; }
 
 protected:
   void check(const T& v) const {
     if (!range_) return;
+    const Range r = storesFloats<T>() ? range_->asFloat() : *range_;
     X3DValue<T>::numbers(v, [&](double x) {
-      if (!range_->contains(x))
+      if (!r.contains(x))
         throw ValueError("value " + formatComponent(x) + " is outside the expected range " + range_->str());
     });
   }
@@ -172,13 +176,15 @@ public:
     return s;
   }
   std::string constraint() const override { return range_ ? range_->str() : std::string(); }
+  const Range* range() const override { return range_ ? &*range_ : nullptr; }
 
 protected:
   void check(const std::vector<T>& v) const {
     if (!range_) return;
+    const Range r = storesFloats<T>() ? range_->asFloat() : *range_;
     for (std::size_t i = 0; i < v.size(); ++i)
       X3DValue<T>::numbers(v[i], [&](double x) {
-        if (!range_->contains(x))
+        if (!r.contains(x))
           throw ValueError("item " + std::to_string(i + 1) + ": value " + formatComponent(x) +
                            " is outside the expected range " + range_->str());
       });

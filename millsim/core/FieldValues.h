@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -85,6 +86,10 @@ struct Range {
   static Range nonNegative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
   static Range atLeast(double v) { return {v, std::numeric_limits<double>::infinity(), false, false}; }
   static Range closed(double a, double b) { return {a, b, false, false}; }
+  static Range openClosed(double a, double b) { return {a, b, true, false}; }  // (a, b]
+  // The bounds as a single-precision field stores them, so that a float field
+  // accepts the value its bound reads as ('0.00001' is below 1e-5 as a float).
+  Range asFloat() const { return {double(float(lo)), double(float(hi)), loOpen, hiOpen}; }
 };
 
 std::string formatNumber(double v);
@@ -92,6 +97,13 @@ std::string formatNumber(float v);
 // A number that came from a float component, printed as that float (0.1, not 0.10000000149).
 inline std::string formatComponent(double v) {
   return double(float(v)) == v ? formatNumber(float(v)) : formatNumber(v);
+}
+
+// Whether a value type keeps its numbers in single precision (range checks then
+// compare against the bounds as floats).
+template <class T> constexpr bool storesFloats() {
+  return std::is_same_v<T, float> || std::is_same_v<T, glm::vec2> || std::is_same_v<T, glm::vec3> ||
+         std::is_same_v<T, glm::vec4> || std::is_same_v<T, Color>;
 }
 
 // X3DValue<T>: read one value of T from the lexer, write it back, and list its numbers.

@@ -30,27 +30,27 @@ public:
                "Trajectory CSV the hand's reference follows (t,x,y,z,qw,qx,qy,qz,button), relative to the scene."};
   SFBool loop{this, "loop", Access::InitializeOnly, false, "Start again at the end of the trajectory."};
   SFFloat handMass{this, "handMass", Access::InitializeOnly, 0.55f, "Mass of the hand and arm moving with the handle (kg).",
-                   Range::nonNegative()};
+                   Range::closed(0, 10)};
   SFFloat handDamping{this, "handDamping", Access::InitializeOnly, 10.f, "Grip damping towards the reference (N·s/m).",
-                      Range::nonNegative()};
+                      Range::closed(0, 1e4)};
   SFFloat handStiffness{this, "handStiffness", Access::InitializeOnly, 500.f,
-                        "Grip stiffness towards the reference (N/m).", Range::nonNegative()};
+                        "Grip stiffness towards the reference (N/m).", Range::closed(0, 1e6)};
   SFFloat handInertia{this, "handInertia", Access::InitializeOnly, 3e-4f,
-                      "Rotational inertia of the hand about the burr centre (kg·m²).", Range::nonNegative()};
+                      "Rotational inertia of the hand about the burr centre (kg·m²).", Range::closed(0, 1)};
   SFFloat handAngularDamping{this, "handAngularDamping", Access::InitializeOnly, 0.02f,
-                             "Grip rotational damping (N·m·s/rad).", Range::nonNegative()};
+                             "Grip rotational damping (N·m·s/rad).", Range::closed(0, 100)};
   SFFloat handAngularStiffness{this, "handAngularStiffness", Access::InitializeOnly, 0.3f,
-                               "Grip rotational stiffness (N·m/rad).", Range::nonNegative()};
+                               "Grip rotational stiffness (N·m/rad).", Range::closed(0, 1000)};
   SFFloat deviceMass{this, "deviceMass", Access::InitializeOnly, 0.15f, "Moving mass of the device (kg).",
-                     Range::positive()};
+                     Range::openClosed(0, 10)};
   SFFloat deviceDamping{this, "deviceDamping", Access::InitializeOnly, 1.f, "Device friction as damping (N·s/m).",
-                        Range::nonNegative()};
+                        Range::closed(0, 1e4)};
   SFFloat deviceInertia{this, "deviceInertia", Access::InitializeOnly, 1e-4f,
-                        "Rotational inertia of the device about the burr centre (kg·m²).", Range::positive()};
+                        "Rotational inertia of the device about the burr centre (kg·m²).", Range::openClosed(0, 1)};
   SFFloat deviceAngularDamping{this, "deviceAngularDamping", Access::InitializeOnly, 0.002f,
-                               "Device rotational friction as damping (N·m·s/rad).", Range::nonNegative()};
+                               "Device rotational friction as damping (N·m·s/rad).", Range::closed(0, 100)};
   SFFloat releaseTime{this, "releaseTime", Access::InitializeOnly, -1.f,
-                      "Time (s) at which the hand lets go of the handle; negative: never."};
+                      "Time (s) at which the hand lets go of the handle; negative: never.", Range::closed(-1, 1e6)};
 
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
   bool followsTrajectory() const override { return true; }

@@ -35,11 +35,11 @@ public:
   SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
                              "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
   SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N).",
-                     Range::positive()};
+                     Range::openClosed(0, 50)};
   SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m).",
-                      Range::positive()};
+                      Range::openClosed(0, 5)};
   SFVec3f positionCalibration{this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
-                              "Offset added to the raw device position (m)."};
+                              "Offset added to the raw device position (m).", Range::closed(-10, 10)};
   SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
                                     "Rotation applied to raw device poses (about the world origin)."};
   SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent."};

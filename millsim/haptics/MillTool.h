@@ -19,11 +19,11 @@ public:
   const NodeType& nodeType() const override { return type(); }
 
   SFFloat tipRadius{this, "tipRadius", Access::InputOutput, 1.0e-3f, "Radius of the burr sphere (m).",
-                    Range::positive()};
+                    Range::openClosed(0, 0.01)};
   SFFloat shaftRadius{this, "shaftRadius", Access::InputOutput, 0.5e-3f, "Radius of the shaft (m).",
-                      Range::positive()};
+                      Range::openClosed(0, 0.01)};
   SFFloat shaftLength{this, "shaftLength", Access::InputOutput, 20e-3f,
-                      "Length of the shaft from the burr centre along local +Y (m).", Range::positive()};
+                      "Length of the shaft from the burr centre along local +Y (m).", Range::openClosed(0, 0.5)};
 
   ToolGeometry geometry() const { return {tipRadius.get(), shaftRadius.get(), shaftLength.get()}; }
   void initialize(DiagnosticSink& sink) override;

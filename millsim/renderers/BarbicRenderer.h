@@ -20,43 +20,43 @@ public:
   RendererTraits traits() const override;
 
   SFInt32 pointShellScale{this, "pointShellScale", Access::InitializeOnly, 3,
-                          "Point shell scaling factor: 1 is every surface voxel; the paper chose 3.", Range::atLeast(1)};
+                          "Point shell scaling factor: 1 is every surface voxel; the paper chose 3.", Range::closed(1, 8)};
   SFFloat contactStiffness{this, "contactStiffness", Access::InitializeOnly, 5000.f,
                            "Penalty stiffness per shell point at scale 1 (N/m); a point of a scale-s shell stands "
                            "for s² fine points and gets s² times this.",
-                           Range::positive()};
+                           Range::openClosed(0, 1e7)};
   SFFloat couplingStiffness{this, "couplingStiffness", Access::InitializeOnly, 2000.f,
                             "Virtual coupling spring between tool and device (N/m): the stiffness the user feels.",
-                            Range::positive()};
+                            Range::openClosed(0, 1e6)};
   SFFloat couplingDamping{this, "couplingDamping", Access::InitializeOnly, 1.f,
                           "Virtual coupling damper on the tool's velocity relative to the device's (N·s/m).",
-                          Range::nonNegative()};
+                          Range::closed(0, 1e4)};
   SFFloat angularCouplingStiffness{this, "angularCouplingStiffness", Access::InitializeOnly, 0.1f,
-                                   "Virtual coupling torsion spring (N·m/rad).", Range::positive()};
+                                   "Virtual coupling torsion spring (N·m/rad).", Range::openClosed(0, 1000)};
   SFFloat angularCouplingDamping{this, "angularCouplingDamping", Access::InitializeOnly, 5e-4f,
-                                 "Virtual coupling torsion damper (N·m·s/rad).", Range::nonNegative()};
+                                 "Virtual coupling torsion damper (N·m·s/rad).", Range::closed(0, 100)};
   SFFloat sdfVoxelSize{this, "sdfVoxelSize", Access::InitializeOnly, 0.05e-3f,
-                       "Cell size of the tool's precomputed distance grid (m).", Range::positive()};
+                       "Cell size of the tool's precomputed distance grid (m).", Range::closed(1e-5, 1e-3)};
   SFBool sampledSdf{this, "sampledSdf", Access::InitializeOnly, false,
                     "Feel the sampled distance grid (the paper's method) instead of the exact analytic distance."};
   SFFloat maxStep{this, "maxStep", Access::InitializeOnly, 0.1e-3f,
                   "Largest tool motion per frame (m, at the shaft's far end for rotations) while material is "
                   "within reach: the tool cannot tunnel through thin walls.",
-                  Range::positive()};
+                  Range::openClosed(0, 0.01)};
   SFInt32 maxTestedPoints{this, "maxTestedPoints", Access::InitializeOnly, 20000,
                           "Work budget: past this many candidate points a frame uses the coarser fallback shell.",
-                          Range::atLeast(1)};
+                          Range::closed(1, 1e6)};
   SFInt32 maxContacts{this, "maxContacts", Access::InitializeOnly, 1000,
                       "Contact budget: past this many contacts a frame uses the coarser fallback shell, then stops "
                       "adding contacts.",
-                      Range::atLeast(1)};
+                      Range::closed(1, 1e5)};
   SFBool culling{this, "culling", Access::InitializeOnly, true,
                  "Cull the point shell with box tests against the tool's oriented box; false tests every point "
                  "(the paper's timings imply this; for comparison only)."};
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances from the tool towards the device at force / feedResistance "
                          "(N·s/m).",
-                         Range::positive()};
+                         Range::openClosed(0, 1e6)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

@@ -16,19 +16,19 @@ public:
   RendererTraits traits() const override;
 
   SFInt32 vertexCount{this, "vertexCount", Access::InitializeOnly, 51,
-                      "Vertices on the centreline, the burr centre included (paper: 51).", Range::atLeast(2)};
+                      "Vertices on the centreline, the burr centre included (paper: 51).", Range::closed(2, 1000)};
   SFInt32 translationSteps{this, "translationSteps", Access::InitializeOnly, 10,
-                           "NUMBER_OF_TRANSLATION_STEPS of the first-contact search (eq. 3).", Range::atLeast(1)};
+                           "NUMBER_OF_TRANSLATION_STEPS of the first-contact search (eq. 3).", Range::closed(1, 100)};
   SFInt32 rotationSteps{this, "rotationSteps", Access::InitializeOnly, 10,
-                        "NUMBER_OF_ROTATION_STEPS of the first-contact search (eq. 4).", Range::atLeast(1)};
+                        "NUMBER_OF_ROTATION_STEPS of the first-contact search (eq. 4).", Range::closed(1, 100)};
   SFFloat springConstant{this, "springConstant", Access::InitializeOnly, 2000.f,
-                         "k_spring of eq. 6 and eq. 10 (N/m).", Range::positive()};
+                         "k_spring of eq. 6 and eq. 10 (N/m).", Range::openClosed(0, 1e6)};
   SFInt32 proxyIterations{this, "proxyIterations", Access::InitializeOnly, 6,
-                          "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::atLeast(1)};
+                          "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::closed(1, 100)};
 
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances into material at force / feedResistance (N·s/m).",
-                         Range::positive()};
+                         Range::openClosed(0, 1e6)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

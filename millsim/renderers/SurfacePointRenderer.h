@@ -17,15 +17,15 @@ public:
 
   SFInt32 sphereVertices{this, "sphereVertices", Access::InitializeOnly, 24,
                          "Vertices on the burr sphere (paper: 24), spread evenly (Fibonacci lattice).",
-                         Range::atLeast(4)};
-  SFInt32 slices{this, "slices", Access::InitializeOnly, 20, "Slices along the shaft (paper: 20).", Range::atLeast(1)};
+                         Range::closed(4, 1000)};
+  SFInt32 slices{this, "slices", Access::InitializeOnly, 20, "Slices along the shaft (paper: 20).", Range::closed(1, 200)};
   SFInt32 verticesPerSlice{this, "verticesPerSlice", Access::InitializeOnly, 8,
-                           "Vertices on each slice's circle (paper: 8).", Range::atLeast(3)};
+                           "Vertices on each slice's circle (paper: 8).", Range::closed(3, 64)};
   // Eq. 14 divides by the vertex count, so the felt stiffness is k times the
   // colliding fraction: k must be much higher than Algorithm #1's.
   SFFloat springConstant{this, "springConstant", Access::InitializeOnly, 20000.f,
                          "k_spring of eq. 14 (N/m); the felt stiffness is about k times the colliding fraction.",
-                         Range::positive()};
+                         Range::openClosed(0, 1e6)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

@@ -10,10 +10,10 @@ public:
   const NodeType& nodeType() const override { return type(); }
 
   MFColor skyColor{this, "skyColor", Access::InputOutput, {Color{glm::vec3(0.f)}},
-                   "Sky colours from the zenith down; the first is used as a flat background."};
+                   "Sky colours from the zenith down; the first is used as a flat background.", Range::closed(0, 1)};
   MFFloat skyAngle{this, "skyAngle", Access::InputOutput, {}, "Angles (radians) at which skyColor changes.",
                    Range::closed(0.0, 3.14159265358979323846)};
-  MFColor groundColor{this, "groundColor", Access::InputOutput, {}, "Ground colours from the nadir up."};
+  MFColor groundColor{this, "groundColor", Access::InputOutput, {}, "Ground colours from the nadir up.", Range::closed(0, 1)};
   MFFloat groundAngle{this, "groundAngle", Access::InputOutput, {}, "Angles (radians) at which groundColor changes.",
                       Range::closed(0.0, 1.57079632679489661923)};
   SFFloat transparency{this, "transparency", Access::InputOutput, 0.f, "0 = opaque.", Range::closed(0.0, 1.0)};

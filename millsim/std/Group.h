@@ -8,9 +8,9 @@ class GroupingNode : public ChildNode {
 public:
   MFNodeOf<ChildNode> children{this, "children", Access::InputOutput, "Nodes grouped under this one."};
   SFVec3f bboxCenter{this, "bboxCenter", Access::InitializeOnly, glm::vec3(0.f),
-                     "Centre of a bounding box hint (m); unused by MillSim."};
+                     "Centre of a bounding box hint (m); unused by MillSim.", Range::closed(-1e4, 1e4)};
   SFVec3f bboxSize{this, "bboxSize", Access::InitializeOnly, glm::vec3(-1.f),
-                   "Size of a bounding box hint (m); -1 -1 -1 means none."};
+                   "Size of a bounding box hint (m); -1 -1 -1 means none.", Range::closed(-1, 1e4)};
 };
 
 // Groups child nodes without changing their frame.

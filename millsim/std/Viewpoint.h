@@ -11,14 +11,14 @@ public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
 
-  SFVec3f position{this, "position", Access::InputOutput, glm::vec3(0.f, 0.f, 10.f), "Camera position (m)."};
+  SFVec3f position{this, "position", Access::InputOutput, glm::vec3(0.f, 0.f, 10.f), "Camera position (m).", Range::closed(-1e4, 1e4)};
   SFRotation orientation{this, "orientation", Access::InputOutput, Rotation{},
                          "Camera orientation; the camera looks along its local -Z with +Y up."};
   SFFloat fieldOfView{this, "fieldOfView", Access::InputOutput, float(std::numbers::pi / 4),
                       "Smaller of the horizontal and vertical view angles (radians).",
                       Range{0.0, std::numbers::pi, true, true}};
   SFVec3f centerOfRotation{this, "centerOfRotation", Access::InputOutput, glm::vec3(0.f),
-                           "Point the viewer orbits about (m)."};
+                           "Point the viewer orbits about (m).", Range::closed(-1e4, 1e4)};
   SFString description{this, "description", Access::InputOutput, "", "Text shown to the user."};
   SFBool jump{this, "jump", Access::InputOutput, true, "Whether binding moves the viewer to this viewpoint."};
 };

@@ -24,11 +24,11 @@ public:
                "Volume sources, first loadable wins: a .vdb, .nrrd/.nhdr, .mha/.mhd, .vti or .dcm file, a folder "
                "of DICOM slices, or phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1]."};
   SFFloat isoValue{this, "isoValue", Access::InitializeOnly, 700.f,
-                   "Density above which a point is inside the object (Hounsfield-like units)."};
+                   "Density above which a point is inside the object (Hounsfield-like units).", Range::closed(-1e9, 1e9)};
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
-                   "Density of air; values at or below it are stored as the sparse background."};
+                   "Density of air; values at or below it are stored as the sparse background.", Range::closed(-1e9, 1e9)};
   SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
-                    "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::nonNegative()};
+                    "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::closed(0, 1)};
   SFBool millable{this, "millable", Access::InputOutput, true, "Whether the burr removes material."};
   SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed so far (m³)."};
   SFString loadedUrl{this, "loadedUrl", Access::OutputOnly, "", "The url that was loaded."};
