@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "Commands.h"
+#include "NumberArgs.h"
 #include "ImageArgs.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
@@ -35,7 +36,8 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default 512x512)");
   cmd->add_option("--trajectory", args->trajectory,
                   "Trajectory CSV to replay (default: the scene device's url, if any)");
-  cmd->add_option("--at", args->at, "Trajectory time to stop at, in seconds (default: its end)");
+  cmd->add_option("--at", args->at, "Trajectory time to stop at, in seconds (default: its end)")
+      ->check(finiteIn(0, 1e6, "s"));
   cmd->add_option("--renderer", args->options.renderer, "Use a default haptics renderer of this type");
   cmd->add_option("--viewpoint", args->viewpoint, "DEF name of the Viewpoint to look through (default: the first)");
   cmd->callback([args, &global, &result] {
@@ -61,6 +63,10 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       else if (HapticsDevice* device = findDevice(*r.scene))
         trajectory = device->trajectory();
       if (trajectory) {
+        const double from = trajectory->startTime(), to = trajectory->endTime();
+        if (std::isfinite(args->at) && (args->at < from || args->at > to))
+          throw std::invalid_argument("--at " + formatNumber(args->at) + " s is outside the trajectory; expected a time in [" +
+                                      formatNumber(from) + ", " + formatNumber(to) + "] s");
         args->options.until = args->at;
         const ReplaySummary s = replay(*r.scene, *trajectory, nullptr, args->options);
         HapticsDevice* device = findDevice(*r.scene);

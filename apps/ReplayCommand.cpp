@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "Commands.h"
+#include "NumberArgs.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/run/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
@@ -22,7 +23,8 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame)");
   cmd->add_option("--renderer", args->options.renderer,
                   "Use a default renderer of this type instead of the scene's (e.g. SurfacePointRenderer)");
-  cmd->add_option("--rate", args->options.rate, "Haptic rate in Hz (default: the device's desiredHapticsRate)");
+  cmd->add_option("--rate", args->options.rate, "Haptic rate in Hz (default: the device's desiredHapticsRate)")
+      ->check(finiteIn(1, 20000, "Hz (the range of desiredHapticsRate)"));
   cmd->add_flag("--timing", args->options.timing,
                 "Log measured compute time per frame (frame_us); without it the log is byte-identical run to run");
   cmd->callback([args, &global, &result] {

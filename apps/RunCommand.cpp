@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "Commands.h"
+#include "NumberArgs.h"
 #include "ImageArgs.h"
 #include "RunGraphics.h"
 #include "millsim/core/NodeRegistry.h"
@@ -65,7 +66,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
   cmd->add_option("--duration", args->duration,
                   "Seconds to run (default: the device's trajectory; a hardware device runs until Ctrl-C)")
-      ->check(CLI::PositiveNumber);
+      ->check(finiteIn(0.001, 1e6, "s"));
   cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame, with period_us)");
   cmd->add_option("--renderer", args->renderer, "Use a default renderer of this type instead of the scene's");
   cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV for a simulated device instead of its url");

@@ -76,6 +76,16 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
         throw TrajectoryError(where + "column '" + std::string(expected[std::size_t(c)]) +
                               "' is not finite: '" + std::string(cells[std::size_t(c)]) + "'");
     }
+    if (v[0] < 0.0 || v[0] > Trajectory::kMaxTime)
+      throw TrajectoryError(where + "time " + formatNumber(v[0]) + " s is outside [0, " +
+                            formatNumber(Trajectory::kMaxTime) + "] s");
+    for (int c = 1; c <= 3; ++c)
+      if (std::abs(v[c]) > Trajectory::kMaxPosition)
+        throw TrajectoryError(where + "column '" + std::string(expected[std::size_t(c)]) + "' = " + formatNumber(v[c]) +
+                              " m is outside [-" + formatNumber(Trajectory::kMaxPosition) + ", " +
+                              formatNumber(Trajectory::kMaxPosition) + "] m");
+    if (rows.size() >= Trajectory::kMaxRows)
+      throw TrajectoryError(where + "more than " + std::to_string(Trajectory::kMaxRows) + " rows");
     TrajectorySample s;
     s.t = v[0];
     s.pose.position = glm::dvec3(v[1], v[2], v[3]);

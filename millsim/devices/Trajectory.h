@@ -27,6 +27,13 @@ struct TrajectorySample {
 
 class Trajectory {
 public:
+  // What a trajectory may hold: times in [0, kMaxTime] s (a day: a replay
+  // steps through every frame of it), positions within kMaxPosition m of the
+  // origin, at most kMaxRows rows (about 3 h of 1 kHz samples).
+  static constexpr double kMaxTime = 86400.0;
+  static constexpr double kMaxPosition = 10.0;
+  static constexpr std::size_t kMaxRows = 10'000'000;
+
   static Trajectory load(const std::filesystem::path& file);
   static Trajectory parse(const std::string& text, const std::string& fileLabel);
   explicit Trajectory(std::vector<TrajectorySample> samples);
