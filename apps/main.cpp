@@ -1,5 +1,7 @@
 // millsim: load, check and run MillSim scenes.
+#include <exception>
 #include <iostream>
+#include <new>
 
 #include "Commands.h"
 #include "MillSimVersion.h"
@@ -27,6 +29,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);  // prints help, version or the usage error
     return code == 0 ? kExitOk : kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // The verbs report their own errors; what still escapes must not abort the process.
+    std::cerr << "millsim: error: out of memory\n";
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    std::cerr << "millsim: error: " << e.what() << "\n";
+    return kExitFailure;
   }
   return result;
 }

@@ -32,6 +32,17 @@ std::string urlScheme(const std::string& url) {
   return "";
 }
 
+// What a path that is neither a regular file nor a folder is, for the message.
+std::string kindOf(const fs::file_status& st) {
+  switch (st.type()) {
+    case fs::file_type::fifo: return "a FIFO (named pipe)";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::character: return "a character device";
+    default: return "not a regular file";
+  }
+}
+
 // DICOM Part 10 files carry "DICM" after a 128-byte preamble; slices often have no extension.
 bool hasDicomMagic(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -73,6 +84,9 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   const fs::file_status st = fs::status(path, ec);
   if (!fs::exists(st)) throw VolumeError(name + ": no such file or folder");
   if (fs::is_directory(st)) return LoadedVolume{readDicom(path, airValue), "dicom", name};
+  // Reading a FIFO would wait forever and a device such as /dev/zero never ends.
+  if (!fs::is_regular_file(st))
+    throw VolumeError(name + ": is " + kindOf(st) + "; volumes are read from regular files or folders");
 
   const std::string ext = lower(path.extension().string());
   if (ext == ".vdb") return LoadedVolume{readVdb(path, airValue), "vdb", name};
@@ -89,6 +103,9 @@ void requireFile(const std::filesystem::path& file, const std::string& what) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw VolumeError(file.string() + ": no such file");
   if (std::filesystem::is_directory(file, ec)) throw VolumeError(file.string() + ": is a folder, not " + what);
+  const auto st = std::filesystem::status(file, ec);
+  if (!std::filesystem::is_regular_file(st))
+    throw VolumeError(file.string() + ": is " + kindOf(st) + ", not " + what + " (a regular file)");
 }
 
 }  // namespace millsim

@@ -395,6 +395,19 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
                         ", " + where + " has " + std::to_string(available));
   }
 
+  // Deflate expands at most about 1032:1, so compressed data that cannot hold
+  // what the header promises is refused before the voxels are allocated (a
+  // 1 KB file claiming 1024³ voxels would otherwise cost 4 GB first).
+  constexpr std::uintmax_t kMaxDeflateRatio = 1032;
+  if (enc == "gzip" && available * kMaxDeflateRatio + 1024 < want)
+    throw VolumeError(name + ": truncated data: the header promises " + promised(want, dims, h.typeName) + ", but " +
+                      where + " holds only " + std::to_string(available) +
+                      " compressed bytes, which gzip cannot expand that far");
+  // ASCII needs at least two characters (a digit and a separator) per value.
+  if (enc == "ascii" && available < 2 * std::uintmax_t(n) - 1)
+    throw VolumeError(name + ": truncated data: the header promises " + std::to_string(n) + " values, but " + where +
+                      " has only " + std::to_string(available) + " characters");
+
   std::ifstream data(dataPath, std::ios::binary);
   if (!data) throw VolumeError(name + ": cannot open " + where);
   data.seekg(std::streamoff(offset));

@@ -1,5 +1,7 @@
 #include "millsim/volume/VolumeObject.h"
 
+#include <new>
+
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VoxelVolume.h"
@@ -44,6 +46,9 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
       return;
     } catch (const VolumeError& e) {
       failures += std::string("\n  ") + e.what();
+    } catch (const std::bad_alloc&) {
+      // A header that declares more voxels than memory holds: an error for this url, not a crash.
+      failures += "\n  " + u + ": out of memory while reading the volume (its header declares more data than fits)";
     }
   }
   sink.error(location(), "VolumeObject could not load any of its urls:" + failures);

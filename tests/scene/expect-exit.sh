@@ -11,8 +11,11 @@
 #                   command runs and must then hold at least N data rows
 #   --file FILE     FILE is removed before the command runs and must then exist
 #                   and be non-empty
+#   --max-memory MB the command runs with its address space capped at MB
+#                   megabytes (ulimit -v): a runaway allocation fails inside it
 # Files are removed first so that a stale file from an earlier run cannot pass.
 patterns=''
+maxmem=''
 rows=''
 files=''
 nl='
@@ -22,10 +25,11 @@ while :; do
     -e) patterns="$patterns$2$nl"; shift 2 ;;
     --rows) rows="$rows$2$nl$3$nl"; shift 3 ;;
     --file) files="$files$2$nl"; shift 2 ;;
+    --max-memory) maxmem=$2; shift 2 ;;
     *) break ;;
   esac
 done
-if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [--rows FILE N] [--file FILE] CODE PATTERN COMMAND..."; exit 1; fi
+if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [--rows FILE N] [--file FILE] [--max-memory MB] CODE PATTERN COMMAND..."; exit 1; fi
 code=$1
 patterns="$2$nl$patterns"
 shift 2
@@ -33,7 +37,11 @@ shift 2
 printf '%s' "$files" | while IFS= read -r f; do rm -f -- "$f"; done
 printf '%s' "$rows" | awk 'NR % 2 == 1' | while IFS= read -r f; do rm -f -- "$f"; done
 
-out=$("$@" 2>&1)
+if [ -n "$maxmem" ]; then
+  out=$(ulimit -v $((maxmem * 1024)) && "$@" 2>&1)
+else
+  out=$("$@" 2>&1)
+fi
 rc=$?
 printf '%s\n' "$out"
 failed=0
