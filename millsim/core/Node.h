@@ -134,9 +134,11 @@ public:
     if (!accepts(*n))
       throw ValueError("field '" + std::string(name()) + "' expects " + std::string(T::kindName) + ", not " +
                        n->typeName());
-    auto v = get();
-    v.push_back(std::dynamic_pointer_cast<T>(n));
-    set(std::move(v));
+    // In place: copying the list for every child made loading n siblings O(n²).
+    refresh();
+    value_.push_back(std::dynamic_pointer_cast<T>(n));
+    stale_ = false;
+    changed();
   }
   std::vector<std::shared_ptr<Node>> nodes() const override { return {get().begin(), get().end()}; }
 

@@ -96,6 +96,10 @@ private:
       c->column = e->int2;
       c->message = e->message ? e->message : "malformed XML";
       while (!c->message.empty() && (c->message.back() == '\n' || c->message.back() == ' ')) c->message.pop_back();
+      // libxml2 suggests an option the user cannot set; say what the limit is instead.
+      if (e->code == XML_ERR_INTERNAL_ERROR && c->message.rfind("Excessive depth in document", 0) == 0)
+        c->message = "elements nest deeper than 256 levels, the most MillSim reads (libxml2's limit); "
+                     "flatten the scene, e.g. fewer nested Transforms or Groups";
     };
     const std::string& text = doc.src.text();
     if (isBlank(text)) {
