@@ -49,7 +49,12 @@ void printSummary(std::ostream& os, const LoopStats& s, const std::string& rende
   os << "  safety: clamped " << s.safety.clamped << ", watchdog trips " << s.safety.watchdogTrips << ", non-finite "
      << s.safety.nonFinite << "; device: sequence gaps " << s.device.sequenceGaps << ", checksum errors "
      << s.device.checksumErrors << "; log records dropped " << s.recordsDropped << "\n";
-  os << "  real-time priority: " << (s.realTimePriority ? "SCHED_FIFO" : "not granted (normal priority)") << "\n";
+  os << "  real-time priority: "
+     << (s.realTimePriority ? "SCHED_FIFO"
+                            : "not granted (normal priority); to grant it, raise the rtprio limit (ulimit -r 99, or "
+                              "'@audio - rtprio 99' in /etc/security/limits.conf) or give the binary CAP_SYS_NICE "
+                              "(setcap cap_sys_nice+ep millsim)")
+     << "\n";
   os.unsetf(std::ios::fixed);
 }
 
