@@ -11,7 +11,7 @@
 // Routes and lazy evaluation (as in H3DAPI): setting a field marks everything
 // routed from it out of date; a field pulls its new value only when read. Fields
 // belong to the scene thread; the haptic thread never touches them (it reads a
-// compiled snapshot instead, see docs/architecture.md).
+// compiled run instead: the VoxelScene, the algorithm and LoopSettings, see docs/architecture.md).
 #include <algorithm>
 #include <cstdint>
 #include <functional>

@@ -5,7 +5,7 @@
 //
 // The node holds parameters as fields. For a run, it compiles them, with the
 // tool's geometry, into a HapticAlgorithm: parameters fixed, state of its own.
-// One step is a function of (scene snapshot, algorithm state, device pose, dt),
+// One step is a function of (the scene view, algorithm state, device pose, dt),
 // so replays are bit-reproducible.
 #include <memory>
 #include <string>
