@@ -141,3 +141,37 @@ TEST(SceneRenderer, UnknownViewpointNameIsAClearError) {
 }
 
 }  // namespace
+
+// The haptic scene and the graphics view take their volumes from one walk:
+// the same volumes, in the same order, at the same place, under Transforms,
+// a USE and an Inline-free nesting; and a ClipPlane reaches only its siblings.
+TEST(SceneWalk, HapticsAndGraphicsSeeTheSameVolumesInTheSameOrder) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("w.x3d", x3d(R"(
+    <Transform translation="0.01 0 0" scale="2 2 2">
+      <ClipPlane plane="0 -1 0 0"/>
+      <VolumeObject DEF="A" url='"phantom:tooth?size=16,16,12"'/>
+    </Transform>
+    <Group>
+      <Transform rotation="0 1 0 1.5707963" translation="0 0.02 0">
+        <VolumeObject DEF="B" url='"phantom:tooth?size=12,12,8"'/>
+      </Transform>
+    </Group>
+    <Transform translation="-0.03 0 0"><VolumeObject USE="A"/></Transform>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  VoxelScene haptic(*r.scene);
+  const SceneView view = readSceneView(*r.scene);
+  ASSERT_EQ(haptic.volumeCount(), 3u);
+  ASSERT_EQ(view.volumes.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(view.volumes[i].voxels, haptic.volume(i).voxels) << "volume " << i;
+    EXPECT_EQ(view.volumes[i].localToWorld, haptic.placement(i).localToWorld) << "volume " << i;
+  }
+  EXPECT_EQ(haptic.volume(0).voxels, haptic.volume(2).voxels) << "USE shares the node's voxels";
+  EXPECT_NE(haptic.volume(0).voxels, haptic.volume(1).voxels);
+  EXPECT_NEAR(haptic.placement(0).worldPerLocal, 2.0, 1e-12);
+  EXPECT_EQ(view.volumes[0].clipPlanes.size(), 1u) << "the ClipPlane clips its sibling";
+  EXPECT_TRUE(view.volumes[1].clipPlanes.empty()) << "and nothing outside its Transform";
+  EXPECT_TRUE(view.volumes[2].clipPlanes.empty());
+}
