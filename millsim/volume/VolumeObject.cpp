@@ -1,5 +1,8 @@
 #include "millsim/volume/VolumeObject.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <new>
 
 #include "millsim/volume/PointShell.h"
@@ -43,6 +46,16 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
       }
       format_ = loaded.format;
       loadedUrl.set(u);
+      // A volume with nothing above isoValue is felt, milled and drawn as
+      // nothing: almost always the wrong isoValue, units or voxel size.
+      float densest = -std::numeric_limits<float>::infinity();
+      for (auto it = volume_->grid().cbeginValueOn(); it; ++it) densest = std::max(densest, *it);
+      if (!(densest > isoValue.get()))
+        sink.error(location(), "VolumeObject " + u + " holds no material: no voxel is above isoValue " +
+                                   formatNumber(isoValue.get()) +
+                                   (std::isfinite(densest) ? " (the densest is " + formatNumber(densest) + ")"
+                                                           : std::string(" (every voxel is air)")) +
+                                   "; check isoValue, the data's units or the voxel size");
       return;
     } catch (const VolumeError& e) {
       failures += std::string("\n  ") + e.what();
