@@ -48,8 +48,10 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
       loadedUrl.set(u);
       // A volume with nothing above isoValue is felt, milled and drawn as
       // nothing: almost always the wrong isoValue, units or voxel size.
+      // Stops at the first voxel with material: a whole scan only for the volume that has none.
       float densest = -std::numeric_limits<float>::infinity();
-      for (auto it = volume_->grid().cbeginValueOn(); it; ++it) densest = std::max(densest, *it);
+      for (auto it = volume_->grid().cbeginValueOn(); it && !(densest > isoValue.get()); ++it)
+        densest = std::max(densest, *it);
       if (!(densest > isoValue.get()))
         sink.error(location(), "VolumeObject " + u + " holds no material: no voxel is above isoValue " +
                                    formatNumber(isoValue.get()) +
