@@ -1,9 +1,10 @@
 #pragma once
 // SceneRenderer: draws a MillSim scene offscreen with OpenGL (3.3 core on
-// OSMesa/llvmpipe): each volume's iso-surface (incrementally re-meshed as it
-// is milled), the standard Shapes, the tool at its drawn pose and Algorithm
-// #1's intersection point as a small red sphere, seen from the scene's
-// Viewpoint over its Background, cut by its ClipPlanes.
+// OSMesa/llvmpipe) through the same SceneDrawer as the window: each volume's
+// iso-surface (incrementally re-meshed as it is milled), the standard Shapes,
+// the tool at its drawn pose and Algorithm #1's intersection point as a small
+// red sphere, seen from the scene's Viewpoint (or framed, without one) over
+// its Background, cut by its ClipPlanes.
 //
 // Threads: a renderer owns a GL context, which is current on one thread. Create
 // it, call it and destroy it on the same thread (the graphics thread of a live
@@ -26,6 +27,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "millsim/graphics/Image.h"
+#include "millsim/graphics/SceneDrawer.h"
 #include "millsim/graphics/SceneView.h"
 #include "millsim/haptics/HapticsRenderer.h"
 #include "millsim/haptics/MillTool.h"
@@ -37,15 +39,6 @@ namespace millsim {
 class Scene;
 class VoxelVolume;
 
-// What to draw of the tool: burr sphere at pose.position, shaft along the
-// pose's +Y, and the red intersection marker if there is one (drawn over
-// everything, since it lies where the shaft enters the tooth).
-struct ToolView {
-  ToolGeometry geometry;
-  Pose pose;
-  bool hasIntersection = false;
-  glm::dvec3 intersection{0.0};
-};
 inline ToolView toolView(const ToolGeometry& g, const HapticOutput& out) {
   return {g, out.drawnTool, out.hasIntersection, out.intersection};
 }
@@ -58,11 +51,7 @@ struct RendererOptions {
   std::vector<const VoxelVolume*> voxels;
 };
 
-struct RendererStats {
-  std::size_t triangles = 0;     // of all volume meshes
-  std::size_t chunks = 0;        // chunk meshes on the GPU
-  std::size_t chunkUploads = 0;  // since construction (an incremental update adds only the chunks it touched)
-};
+using RendererStats = DrawStats;
 
 class SceneRenderer {
 public:

@@ -1,5 +1,6 @@
 #include "millsim/graphics/SceneView.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,6 +12,7 @@
 #include "millsim/std/Box.h"
 #include "millsim/std/Cylinder.h"
 #include "millsim/std/Material.h"
+#include "millsim/std/NavigationInfo.h"
 #include "millsim/std/SceneWalk.h"
 #include "millsim/std/Shape.h"
 #include "millsim/std/Sphere.h"
@@ -67,22 +69,76 @@ void grow(SceneView& sv, bool& any, const glm::dmat4& m, const glm::dvec3& half)
   }
 }
 
+ViewSpec viewOf(const Viewpoint& vp, const glm::dmat4& m) {
+  ViewSpec v;
+  v.position = glm::dvec3(m * glm::dvec4(glm::dvec3(vp.position.get()), 1.0));
+  // Scale in the parent transform does not change where the camera looks.
+  const glm::dquat parentRotation = glm::quat_cast(glm::dmat3(
+      glm::normalize(glm::dvec3(m[0])), glm::normalize(glm::dvec3(m[1])), glm::normalize(glm::dvec3(m[2]))));
+  v.orientation = glm::normalize(parentRotation * glm::dquat(vp.orientation.get().quat()));
+  v.fieldOfView = vp.fieldOfView.get();
+  return v;
+}
+
+// Index of `plane` in the cut-plane list, added if new (a USEd ClipPlane is one plane).
+int cutIndex(SceneView& sv, const glm::dvec4& plane) {
+  for (std::size_t i = 0; i < sv.cutPlanes.size(); ++i)
+    if (sv.cutPlanes[i].plane == plane) return int(i);
+  sv.cutPlanes.push_back({plane, true, "ClipPlane " + std::to_string(sv.cutPlanes.size() + 1), false});
+  return int(sv.cutPlanes.size() - 1);
+}
+
+std::vector<int> cutsOf(SceneView& sv, const ClipPlanes& planes) {
+  std::vector<int> out;
+  for (const glm::dvec4& p : planes) out.push_back(cutIndex(sv, p));
+  return out;
+}
+
 }  // namespace
+
+ViewSpec frameBounds(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dquat& orientation, double fieldOfView) {
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+  const double fov = std::clamp(fieldOfView, 1e-3, 3.1);
+  // The bounding sphere fills the smaller image side, with 10 % to spare.
+  const double distance = 1.1 * radius / std::sin(0.5 * fov);
+  ViewSpec v;
+  v.orientation = glm::normalize(orientation);
+  v.position = centre + (glm::mat3_cast(v.orientation) * glm::dvec3(0.0, 0.0, 1.0)) * distance;
+  v.fieldOfView = fov;
+  return v;
+}
+
+int SceneView::addUserCut(const glm::dvec3& towards) {
+  for (std::size_t i = 0; i < cutPlanes.size(); ++i)
+    if (cutPlanes[i].user) return int(i);
+  const glm::dvec3 n = glm::length(towards) > 0.0 ? glm::normalize(towards) : glm::dvec3(0.0, 0.0, 1.0);
+  // Keeps the far half (n points at the viewer): the cut opens the volume towards them.
+  cutPlanes.push_back({glm::dvec4(-n, glm::dot(n, centre())), false, "user cut", true});
+  const int index = int(cutPlanes.size() - 1);
+  for (DrawVolume& v : volumes) v.cuts.push_back(index);
+  return index;
+}
 
 SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
   SceneView sv;
-  bool haveView = false, haveBackground = false, haveBounds = false;
+  bool haveView = false, haveBackground = false, haveBounds = false, haveNavigation = false;
   walkScene(scene, [&](Node& n, const WalkFrame& at) {
     const glm::dmat4& m = at.localToWorld;
-    if (auto* vp = dynamic_cast<Viewpoint*>(&n); vp && !haveView && (!viewpoint || viewpoint == vp)) {
-      haveView = true;
-      sv.view.position = glm::dvec3(m * glm::dvec4(glm::dvec3(vp->position.get()), 1.0));
-      // Scale in the parent transform does not change where the camera looks.
-      const glm::dquat parentRotation = glm::quat_cast(glm::dmat3(glm::normalize(glm::dvec3(m[0])),
-                                                                  glm::normalize(glm::dvec3(m[1])),
-                                                                  glm::normalize(glm::dvec3(m[2]))));
-      sv.view.orientation = glm::normalize(parentRotation * glm::dquat(vp->orientation.get().quat()));
-      sv.view.fieldOfView = vp->fieldOfView.get();
+    if (auto* vp = dynamic_cast<Viewpoint*>(&n)) {
+      NamedView named{vp->description.get(), viewOf(*vp, m), glm::dvec3(m * glm::dvec4(glm::dvec3(vp->centerOfRotation.get()), 1.0)),
+                      vp->centerOfRotation.get() != glm::vec3(0.f)};
+      if (named.name.empty()) named.name = vp->defName();
+      if (named.name.empty()) named.name = "Viewpoint " + std::to_string(sv.viewpoints.size() + 1);
+      sv.viewpoints.push_back(named);
+      if (!haveView && (!viewpoint || viewpoint == vp)) {
+        haveView = true;
+        sv.view = named.view;
+      }
+    }
+    if (auto* nav = dynamic_cast<NavigationInfo*>(&n); nav && !haveNavigation) {
+      haveNavigation = true;
+      if (!nav->navType.get().empty()) sv.navigation = nav->navType.get().front();
     }
     if (auto* bg = dynamic_cast<Background*>(&n); bg && !haveBackground && !bg->skyColor.get().empty()) {
       haveBackground = true;
@@ -90,7 +146,7 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
     }
     if (auto* shape = dynamic_cast<Shape*>(&n)) {
       Node* g = shape->geometry.get().get();
-      DrawShape d{DrawShape::Kind::Sphere, m, materialOf(*shape), *at.clipPlanes};
+      DrawShape d{DrawShape::Kind::Sphere, m, materialOf(*shape), *at.clipPlanes, {}};
       bool known = true;
       if (auto* s = dynamic_cast<Sphere*>(g))
         d.model = glm::scale(m, glm::dvec3(s->radius.get()));
@@ -102,6 +158,7 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
       else
         known = false;  // no geometry, or one graphics does not draw
       if (known) {
+        d.cuts = cutsOf(sv, d.clipPlanes);
         grow(sv, haveBounds, d.model, glm::dvec3(d.kind == DrawShape::Kind::Box ? 0.5 : 1.0));
         sv.shapes.push_back(std::move(d));
       }
@@ -109,8 +166,13 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
   });
   // Volumes from the list the haptic scene is built from: the same order by construction.
   for (const PlacedVolume& p : placedVolumes(scene)) {
-    sv.volumes.push_back({p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.clipPlanes});
+    sv.volumes.push_back(
+        {p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.clipPlanes, cutsOf(sv, p.clipPlanes)});
     grow(sv, haveBounds, p.localToWorld, p.node->volume()->halfSize());
+  }
+  if (!haveView && haveBounds) {
+    sv.view = frameBounds(sv.boundsMin, sv.boundsMax, sv.view.orientation, sv.view.fieldOfView);
+    sv.framed = true;
   }
   return sv;
 }

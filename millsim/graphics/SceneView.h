@@ -5,6 +5,7 @@
 // its accumulated transform and the ClipPlanes that apply to it. Also the
 // camera maths (view, projection, projecting a world point to a pixel), which
 // the scene tests use to know where things must appear.
+#include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -44,11 +45,21 @@ struct DrawMaterial {
 // World-space planes (a, b, c, d), unit normal: a point p stays when dot(plane, (p, 1)) >= 0.
 using ClipPlanes = std::vector<glm::dvec4>;
 
+// A plane that cuts the drawing (never the haptics): one per distinct world
+// plane of the scene's ClipPlanes, plus the user's own (SceneView::addUserCut).
+struct CutPlane {
+  glm::dvec4 plane;      // as ClipPlanes: unit normal, keeps dot(plane, (p, 1)) >= 0
+  bool enabled = true;
+  std::string name;      // "ClipPlane 'DEF'" or "ClipPlane 1"; "user cut"
+  bool user = false;     // the user's plane cuts every volume (not the Shapes)
+};
+
 struct DrawShape {
   enum class Kind { Sphere, Cylinder, Box } kind;
   glm::dmat4 model;  // unit primitive (radius 1 / height 1 / edge 1, centred) to world
   DrawMaterial material;
-  ClipPlanes clipPlanes;
+  ClipPlanes clipPlanes;  // as authored (world)
+  std::vector<int> cuts;  // the same planes as indices into SceneView::cutPlanes
 };
 
 struct DrawVolume {
@@ -56,18 +67,45 @@ struct DrawVolume {
   glm::dmat4 localToWorld;
   double iso;
   ClipPlanes clipPlanes;
+  std::vector<int> cuts;
+};
+
+// A Viewpoint to cycle through (Page Up / Page Down in the window).
+struct NamedView {
+  std::string name;  // its description, else its DEF name, else "Viewpoint N"
+  ViewSpec view;
+  glm::dvec3 centerOfRotation{0.0};  // world; EXAMINE turns about it when it is set
+  bool hasCenterOfRotation = false;  // the field is not (0, 0, 0)
 };
 
 struct SceneView {
-  ViewSpec view;                        // the first Viewpoint, or X3D's default
+  // The first Viewpoint (or the one asked for); without any, the whole scene
+  // framed from +Z (frameBounds), since X3D's default viewpoint 10 m away
+  // sees a millimetre tooth as a dot.
+  ViewSpec view;
+  bool framed = false;                  // true when `view` was framed, not read
+  std::vector<NamedView> viewpoints;    // every Viewpoint, in file order
+  std::string navigation = "EXAMINE";   // the first NavigationInfo's first type
   glm::vec3 background{0.f};            // the first Background's first skyColor
   std::vector<DrawShape> shapes;
   std::vector<DrawVolume> volumes;      // loaded VolumeObjects, in placedVolumes() order (as VoxelScene)
+  std::vector<CutPlane> cutPlanes;
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};  // of shapes and volumes (world); equal if none
+
+  bool hasBounds() const { return boundsMax != boundsMin; }
+  glm::dvec3 centre() const { return 0.5 * (boundsMin + boundsMax); }
+  // Adds (once) a plane through the scene's centre facing `towards` that
+  // cuts every volume, disabled; returns its index in cutPlanes.
+  int addUserCut(const glm::dvec3& towards);
 };
 
 // `viewpoint`: the Viewpoint to look through; null takes the first in the file.
 SceneView readSceneView(const Scene& scene, const Node* viewpoint = nullptr);
+
+// A view along `orientation` (looking down its −Z) from far enough that the
+// sphere around [lo, hi] fills the smaller image side with a small margin.
+ViewSpec frameBounds(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dquat& orientation,
+                     double fieldOfView = 0.7853981633974483);
 
 // Clip planes beyond this many per object are ignored (GL guarantees 8 clip distances).
 inline constexpr int kMaxClipPlanes = 6;

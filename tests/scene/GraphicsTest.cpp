@@ -175,3 +175,45 @@ TEST(SceneWalk, HapticsAndGraphicsSeeTheSameVolumesInTheSameOrder) {
   EXPECT_TRUE(view.volumes[1].clipPlanes.empty()) << "and nothing outside its Transform";
   EXPECT_TRUE(view.volumes[2].clipPlanes.empty());
 }
+
+// X3D's default viewpoint sits 10 m away: a millimetre tooth would be a dot
+// (or nothing). Without a Viewpoint the scene is framed, and the tooth fills
+// a good part of the picture.
+TEST(SceneView, SceneWithoutViewpointIsFramedNotBlack) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("novp.x3d", x3d(R"(
+    <Background skyColor="0 0 0"/>
+    <VolumeObject url='"phantom:tooth?size=48,48,32"'/>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const SceneView view = readSceneView(*r.scene);
+  EXPECT_TRUE(view.framed);
+  EXPECT_TRUE(view.viewpoints.empty());
+  auto renderer = createSceneRenderer(*r.scene, sized(128));
+  renderer->render(std::nullopt);
+  const Image img = renderer->readPixels();
+  int lit = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) lit += img.at(x, y).r + img.at(x, y).g > 40 ? 1 : 0;
+  EXPECT_GT(lit, img.width * img.height / 20) << "the framed tooth covers over 5 % of the image";
+  EXPECT_LT(lit, img.width * img.height * 9 / 10) << "and fits inside it";
+}
+
+TEST(SceneView, ViewpointsAreListedByDescriptionOrDefName) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("vps.x3d", x3d(R"(
+    <Viewpoint DEF="A" description="From the side" position="0 0 0.05"/>
+    <Transform translation="0 0.01 0"><Viewpoint DEF="B" position="0 0 0.05" centerOfRotation="0 0.001 0"/></Transform>
+    <Viewpoint position="0 0 1"/>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const SceneView view = readSceneView(*r.scene);
+  ASSERT_EQ(view.viewpoints.size(), 3u);
+  EXPECT_EQ(view.viewpoints[0].name, "From the side");
+  EXPECT_EQ(view.viewpoints[1].name, "B");
+  EXPECT_EQ(view.viewpoints[2].name, "Viewpoint 3");
+  EXPECT_NEAR(view.viewpoints[1].view.position.y, 0.01, 1e-9) << "in world coordinates";
+  EXPECT_TRUE(view.viewpoints[1].hasCenterOfRotation);
+  EXPECT_NEAR(view.viewpoints[1].centerOfRotation.y, 0.011, 1e-9);
+  EXPECT_FALSE(view.framed);
+}

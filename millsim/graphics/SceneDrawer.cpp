@@ -1,0 +1,207 @@
+// SceneDrawer (SceneDrawer.h): the scene's one OpenGL drawing.
+#include "millsim/graphics/SceneDrawer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "millsim/graphics/GlMesh.h"
+#include "millsim/graphics/ShadedProgram.h"
+#include "millsim/graphics/VolumeMesh.h"
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+namespace {
+
+// The tool's look: a steel-blue burr and a grey shaft, hues no tooth has; the
+// device's ghost in green wire, the intersection marker red.
+const DrawMaterial kBurr{glm::vec3(0.45f, 0.55f, 0.85f), glm::vec3(0.6f), glm::vec3(0.f), 0.25f, 0.4f};
+const DrawMaterial kShaft{glm::vec3(0.55f, 0.58f, 0.66f), glm::vec3(0.5f), glm::vec3(0.f), 0.25f, 0.3f};
+const DrawMaterial kGhost{glm::vec3(0.2f, 0.9f, 0.3f), glm::vec3(0.f), glm::vec3(0.1f, 0.4f, 0.1f), 0.5f, 0.1f};
+const DrawMaterial kMarker{glm::vec3(1.f, 0.05f, 0.05f), glm::vec3(0.3f), glm::vec3(0.25f, 0.f, 0.f), 0.3f, 0.2f};
+const DrawMaterial kTissue{glm::vec3(1.f), glm::vec3(0.22f), glm::vec3(0.f), 0.22f, 0.25f};
+
+void flipRows(std::uint8_t* data, std::size_t rowBytes, int rows) {
+  std::vector<std::uint8_t> tmp(rowBytes);
+  for (int y = 0; y < rows / 2; ++y) {
+    std::uint8_t* a = data + std::size_t(y) * rowBytes;
+    std::uint8_t* b = data + std::size_t(rows - 1 - y) * rowBytes;
+    std::copy(a, a + rowBytes, tmp.data());
+    std::copy(b, b + rowBytes, a);
+    std::copy(tmp.data(), tmp.data() + rowBytes, b);
+  }
+}
+
+}  // namespace
+
+SceneDrawer::SceneDrawer(SceneView scene) : scene_(std::move(scene)), view_(scene_.view) {
+  program_ = std::make_unique<ShadedProgram>();
+  std::vector<Vertex> v;
+  std::vector<std::uint32_t> idx;
+  sphere_ = std::make_unique<GlMesh>(false);
+  cylinder_ = std::make_unique<GlMesh>(false);
+  box_ = std::make_unique<GlMesh>(false);
+  unitSphere(v, idx);
+  sphere_->upload(v, idx);
+  unitCylinder(v, idx);
+  cylinder_->upload(v, idx);
+  unitBox(v, idx);
+  box_->upload(v, idx);
+  for (const DrawVolume& dv : scene_.volumes) {
+    meshes_.push_back(std::make_unique<VolumeMesh>(*dv.voxels, float(dv.iso)));
+    meshes_.back()->build();
+  }
+}
+
+SceneDrawer::~SceneDrawer() = default;
+
+std::size_t SceneDrawer::addVolume(const VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso) {
+  scene_.volumes.push_back({&voxels, localToWorld, iso, {}, {}});
+  meshes_.push_back(std::make_unique<VolumeMesh>(voxels, float(iso)));
+  meshes_.back()->build();
+  return meshes_.size() - 1;
+}
+
+std::size_t SceneDrawer::volumeCount() const { return meshes_.size(); }
+
+void SceneDrawer::volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) {
+  if (!blocks.empty()) mesh(index).update(blocks);
+}
+
+void SceneDrawer::rebuildVolume(std::size_t index) { mesh(index).build(); }
+
+VolumeMesh& SceneDrawer::mesh(std::size_t index) {
+  if (index >= meshes_.size())
+    throw std::out_of_range("volume index " + std::to_string(index) + " is out of range (the renderer has " +
+                            std::to_string(meshes_.size()) + " volumes)");
+  return *meshes_[index];
+}
+
+ClipPlanes SceneDrawer::planesFor(const std::vector<int>& cutIndices, bool volume) const {
+  ClipPlanes out;
+  for (int i : cutIndices) {
+    const CutPlane& c = scene_.cutPlanes[std::size_t(i)];
+    if (c.enabled && (volume || !c.user)) out.push_back(c.plane);
+  }
+  return out;
+}
+
+void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools) {
+  aim(width, height, tools);
+  glViewport(0, 0, width, height);
+  glClearColor(scene_.background.r, scene_.background.g, scene_.background.b, 1.f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // open iso-surfaces and cut-planes show their insides
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  for (int i = 0; i < kMaxClipPlanes; ++i) glEnable(GLenum(GL_CLIP_DISTANCE0 + i));
+
+  // Headlight from the eye; fill light from the camera's upper left.
+  const glm::dmat3 cameraAxes = glm::mat3_cast(view_.orientation);
+  const glm::vec3 head(glm::normalize(cameraAxes * glm::dvec3(0.0, 0.0, 1.0)));
+  const glm::vec3 fill(glm::normalize(cameraAxes * glm::dvec3(-0.6, 0.8, 0.4)));
+  program_->use(camera_, head, fill);
+
+  for (std::size_t i = 0; i < meshes_.size(); ++i) {
+    program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
+    meshes_[i]->draw();
+  }
+  for (const DrawShape& s : scene_.shapes) {
+    program_->setObject(s.model, s.material, &s.material.diffuse, false, planesFor(s.cuts, false));
+    (s.kind == DrawShape::Kind::Sphere ? *sphere_ : s.kind == DrawShape::Kind::Cylinder ? *cylinder_ : *box_).draw();
+  }
+  for (const ToolView& t : tools) drawTool(t);
+  for (int i = 0; i < kMaxClipPlanes; ++i) glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
+  glBindVertexArray(0);
+}
+
+Image SceneDrawer::readPixels(int width, int height) {
+  Image img;
+  img.width = width;
+  img.height = height;
+  img.rgba.resize(std::size_t(width) * std::size_t(height) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  flipRows(img.rgba.data(), std::size_t(width) * 4, height);
+  return img;
+}
+
+std::vector<float> SceneDrawer::readDepth(int width, int height) {
+  std::vector<float> depth(std::size_t(width) * std::size_t(height));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  flipRows(reinterpret_cast<std::uint8_t*>(depth.data()), std::size_t(width) * sizeof(float), height);
+  return depth;
+}
+
+DrawStats SceneDrawer::stats() const {
+  DrawStats s;
+  for (const auto& m : meshes_) {
+    s.triangles += m->triangles();
+    s.chunks += m->chunks();
+    s.chunkUploads += m->uploads();
+  }
+  return s;
+}
+
+// Near and far planes hug what there is to see (scene bounds and tools), so
+// that a 24-bit depth buffer resolves a tooth seen from a few centimetres.
+void SceneDrawer::aim(int width, int height, const std::vector<ToolView>& tools) {
+  glm::dvec3 lo = scene_.boundsMin, hi = scene_.boundsMax;
+  bool any = !scene_.volumes.empty() || !scene_.shapes.empty();
+  for (const ToolView& t : tools) {
+    const double reach = t.geometry.shaftLength + t.geometry.tipRadius;
+    const glm::dvec3 a = t.pose.position - reach, b = t.pose.position + reach;
+    lo = any ? glm::min(lo, a) : a;
+    hi = any ? glm::max(hi, b) : b;
+    any = true;
+  }
+  double farthest = 1.0, nearest = 0.0;
+  if (any) {
+    farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+      farthest = std::max(farthest, glm::length(corner - view_.position));
+    }
+    nearest = glm::length(glm::max(glm::max(lo - view_.position, view_.position - hi), glm::dvec3(0.0)));
+  }
+  const double farDistance = std::max(farthest * 1.05, 1e-3);
+  const double nearDistance = std::max(nearest * 0.5, farDistance * 1e-4);
+  camera_ = makeCamera(view_, width, height, nearDistance, farDistance);
+}
+
+void SceneDrawer::drawTool(const ToolView& t) {
+  const ClipPlanes none;
+  const glm::dmat4 pose =
+      glm::translate(glm::dmat4(1.0), t.pose.position) * glm::mat4_cast(glm::normalize(t.pose.orientation));
+  if (t.ghost) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);  // wire: it never hides the renderer's tool
+  program_->setObject(glm::scale(pose, glm::dvec3(t.geometry.tipRadius)), t.ghost ? kGhost : kBurr,
+                      t.ghost ? &kGhost.diffuse : &kBurr.diffuse, false, none);
+  sphere_->draw();
+  const glm::dmat4 shaft = glm::scale(glm::translate(pose, glm::dvec3(0.0, t.geometry.shaftLength / 2, 0.0)),
+                                      glm::dvec3(t.geometry.shaftRadius, t.geometry.shaftLength,
+                                                 t.geometry.shaftRadius));
+  program_->setObject(shaft, t.ghost ? kGhost : kShaft, t.ghost ? &kGhost.diffuse : &kShaft.diffuse, false, none);
+  cylinder_->draw();
+  if (t.ghost) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  if (t.hasIntersection && !t.ghost) {
+    // As thick as the shaft and drawn over everything: the point is where
+    // the shaft enters the tooth, so the tooth would hide it (paper, Fig. 14).
+    const double r = std::max(t.geometry.shaftRadius, 0.5 * t.geometry.tipRadius);
+    program_->setObject(glm::scale(glm::translate(glm::dmat4(1.0), t.intersection), glm::dvec3(r)), kMarker,
+                        &kMarker.diffuse, false, none);
+    glDisable(GL_DEPTH_TEST);
+    sphere_->draw();
+    glEnable(GL_DEPTH_TEST);
+  }
+}
+
+}  // namespace millsim

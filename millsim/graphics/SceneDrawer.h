@@ -1,0 +1,98 @@
+#pragma once
+// SceneDrawer: the one OpenGL drawing of a MillSim scene, into whatever 3.3
+// core context is current — OSMesa's offscreen buffer (GlSceneRenderer) or the
+// window's (millsim/window). Both link the same object code, so the test
+// harness's screenshots and the window show the same frame.
+//
+// It draws each volume's iso-surface (re-meshed incrementally as it is
+// milled), the standard Shapes, the tool at its drawn pose, optionally the
+// device's own pose as a ghost, and Algorithm #1's intersection point, seen
+// through a ViewSpec, cut by the cut planes (the scene's ClipPlanes and a
+// user plane), which cut the drawing only.
+//
+// Threads: create, call and destroy it on the thread whose context is current.
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "millsim/graphics/Image.h"
+#include "millsim/graphics/SceneView.h"
+#include "millsim/haptics/MillTool.h"
+#include "millsim/math/Pose.h"
+#include "millsim/volume/DirtyBlocks.h"
+
+namespace millsim {
+
+class GlMesh;
+class ShadedProgram;
+class VolumeMesh;
+class VoxelVolume;
+
+// What to draw of the tool: burr sphere at pose.position, shaft along the
+// pose's +Y, and the red intersection marker if there is one (drawn over
+// everything, since it lies where the shaft enters the tooth).
+struct ToolView {
+  ToolGeometry geometry;
+  Pose pose;
+  bool hasIntersection = false;
+  glm::dvec3 intersection{0.0};
+  // Drawn translucent and without the marker: the device's pose next to the
+  // renderer's (a MouseDevice has no force output, so the hand sees the gap).
+  bool ghost = false;
+};
+
+struct DrawStats {
+  std::size_t triangles = 0;     // of all volume meshes
+  std::size_t chunks = 0;        // chunk meshes on the GPU
+  std::size_t chunkUploads = 0;  // since construction (an incremental update adds only the chunks it touched)
+};
+
+class SceneDrawer {
+public:
+  // Meshes every volume of `scene` (≈60 ms for the tooth) with the current context.
+  explicit SceneDrawer(SceneView scene);
+  ~SceneDrawer();
+  SceneDrawer(const SceneDrawer&) = delete;
+  SceneDrawer& operator=(const SceneDrawer&) = delete;
+
+  const SceneView& scene() const { return scene_; }
+
+  std::size_t addVolume(const VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso);
+  std::size_t volumeCount() const;
+  void volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks);
+  void rebuildVolume(std::size_t index);
+
+  void setView(const ViewSpec& view) { view_ = view; }
+  const ViewSpec& view() const { return view_; }
+  // The camera of the latest draw() or aim() (near and far follow the scene and tools).
+  const Camera& camera() const { return camera_; }
+  // Sets camera() for an image of width × height without drawing.
+  void aim(int width, int height, const std::vector<ToolView>& tools = {});
+
+  // The cut planes, scene ClipPlanes first (SceneView::cutPlanes), may be
+  // moved, turned and switched off; they cut the drawing only.
+  std::vector<CutPlane>& cutPlanes() { return scene_.cutPlanes; }
+
+  // Draws one frame into the current framebuffer of width × height pixels.
+  void draw(int width, int height, const std::vector<ToolView>& tools);
+  // The current framebuffer: colour (rows from the top) and depth in [0, 1].
+  static Image readPixels(int width, int height);
+  static std::vector<float> readDepth(int width, int height);
+
+  DrawStats stats() const;
+
+private:
+  VolumeMesh& mesh(std::size_t index);
+  void drawTool(const ToolView& t);
+  ClipPlanes planesFor(const std::vector<int>& cutIndices, bool volume) const;
+
+  SceneView scene_;
+  ViewSpec view_;
+  Camera camera_;
+  std::unique_ptr<ShadedProgram> program_;
+  std::unique_ptr<GlMesh> sphere_, cylinder_, box_;
+  std::vector<std::unique_ptr<VolumeMesh>> meshes_;
+};
+
+}  // namespace millsim
