@@ -1,12 +1,16 @@
 // millsim run SCENE.x3d: runs a scene's device at its haptic rate in real
 // time on a dedicated thread, logs every frame, and prints the rate and force
-// statistics. The scene thread (this one) only drains logs and copies the
-// newest frame into the device node's fields; it never holds the haptic
-// thread up.
+// statistics. With a display it opens the window (navigation, cut planes, HUD,
+// keys 1–3 swap the renderer live); without one it draws offscreen. The scene
+// thread (this one) drains logs, copies the newest frame into the device
+// node's fields, feeds the HUD and carries out the window's commands; it
+// never holds the haptic thread up.
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -17,11 +21,17 @@
 #include "Commands.h"
 #include "NumberArgs.h"
 #include "ImageArgs.h"
+#include "RunControls.h"
 #include "RunGraphics.h"
+#include "RunHud.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/devices/MouseDevice.h"
 #include "millsim/run/FrameLog.h"
+#include "millsim/run/RendererPool.h"
 #include "millsim/run/RunSetup.h"
+#include "millsim/std/WorldInfo.h"
+#include "millsim/window/WindowModule.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/volume/VoxelScene.h"
 #include "millsim/x3d/X3DLoader.h"
@@ -58,14 +68,21 @@ void printSummary(std::ostream& os, const LoopStats& s, const std::string& rende
   os.unsetf(std::ios::fixed);
 }
 
+// "MillSim — <WorldInfo title, else the file name>"
+std::string windowTitle(const Scene& scene, const std::string& file) {
+  for (const WorldInfo* info : scene.nodesOfType<WorldInfo>())
+    if (!info->title.get().empty()) return "MillSim — " + info->title.get();
+  return "MillSim — " + std::filesystem::path(file).filename().string();
+}
+
 }  // namespace
 
 void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
   struct Args {
-    std::string scene, log, renderer, trajectory, screenshot, size = "512x512";
+    std::string scene, log, renderer, trajectory, screenshot, size;
     double duration = 0.0;
-    bool noGraphics = false;
+    bool noGraphics = false, noWindow = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
@@ -75,9 +92,12 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame, with period_us)");
   cmd->add_option("--renderer", args->renderer, "Use a default renderer of this type instead of the scene's");
   cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV for a simulated device instead of its url");
-  cmd->add_flag("--no-graphics", args->noGraphics, "Run without a graphics thread (no GL context, no meshes)");
-  cmd->add_option("--screenshot", args->screenshot, "PNG of the last graphics frame, written at the end");
-  cmd->add_option("--size", args->size, "Graphics frame size WIDTHxHEIGHT (default 512x512)");
+  cmd->add_flag("--no-graphics", args->noGraphics, "Run without a graphics thread (no window, no GL context, no meshes)");
+  cmd->add_flag("--no-window", args->noWindow,
+                "Draw offscreen (OSMesa) even when a display is available (the window opens when DISPLAY or "
+                "WAYLAND_DISPLAY is set)");
+  cmd->add_option("--screenshot", args->screenshot, "PNG of the last graphics frame (the window's, with its HUD), written at the end");
+  cmd->add_option("--size", args->size, "Window or frame size WIDTHxHEIGHT (default 1024x768 in a window, else 512x512)");
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
@@ -91,19 +111,47 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     CompiledRun run;
     double duration = 0.0;
     RunGraphicsOptions graphicsOptions;
+    RunControls controls;
+    std::unique_ptr<PointerInput> pointer;
+    std::unique_ptr<RendererPool> pool;
     try {
       if (args->noGraphics && !args->screenshot.empty())
         throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
       if (!args->noGraphics) {
-        std::tie(graphicsOptions.width, graphicsOptions.height) = parseSize(args->size);
+        graphicsOptions.window = !args->noWindow && displayAvailable();
+        if (!args->noWindow && !graphicsOptions.window)
+          std::cout << "millsim run: no display (DISPLAY and WAYLAND_DISPLAY are unset): drawing offscreen, no window\n";
+        const std::string size = !args->size.empty() ? args->size : graphicsOptions.window ? "1024x768" : "512x512";
+        std::tie(graphicsOptions.width, graphicsOptions.height) = parseSize(size);
         if (!args->screenshot.empty()) checkWritable(args->screenshot, "--screenshot");
         graphicsOptions.screenshot = args->screenshot;
       }
       run = compileRun(*r.scene, args->renderer);
       std::optional<Trajectory> trajectory;
       if (!args->trajectory.empty()) trajectory = Trajectory::load(args->trajectory);
-      auto driver = run.device->openDriver(DriverOptions{trajectory ? &*trajectory : nullptr});
+      DriverOptions driverOptions{trajectory ? &*trajectory : nullptr, nullptr};
+      if (auto* mouse = dynamic_cast<MouseDevice*>(run.device); mouse && graphicsOptions.window) {
+        pointer = std::make_unique<PointerInput>(mouse->startPose());
+        driverOptions.pointer = pointer.get();
+        graphicsOptions.pointer = pointer.get();
+        graphicsOptions.pointerStart = mouse->startPose();
+        graphicsOptions.pointerDepthStep = mouse->depthStep.get();
+      }
+      auto driver = run.device->openDriver(driverOptions);
       duration = args->duration > 0.0 ? args->duration : driver->naturalDuration();
+      if (graphicsOptions.window) {
+        // Every renderer compiled now, on this thread: a key swaps to a ready one.
+        const auto t0 = std::chrono::steady_clock::now();
+        pool = std::make_unique<RendererPool>(*r.scene, run, run.algorithm.get());
+        std::cout << "prepared " << pool->size() << " renderers for live swapping in " << std::fixed
+                  << std::setprecision(2) << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+                  << " s\n";
+        std::cout.unsetf(std::ios::fixed);
+        graphicsOptions.renderers = pool->typeNames();
+        graphicsOptions.title = windowTitle(*r.scene, args->scene);
+        graphicsOptions.controls = &controls;
+        if (const char* stall = std::getenv("MILLSIM_TEST_STALL_WINDOW_MS")) graphicsOptions.stallMs = std::atoi(stall);
+      }
       loop = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
     } catch (const std::exception& e) {
       std::cerr << "millsim run: error: " << e.what() << "\n";
@@ -120,11 +168,15 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       }
     }
     FrameLogWriter writer(args->log.empty() ? nullptr : &log);
+    HudFeed hud(run.settings.rate);
+    if (pool) writer.observe([&hud](const FrameRecord& f) { hud.add(f); });
     const std::string deviceName =
         run.device->typeName() + (run.device->defName().empty() ? "" : " '" + run.device->defName() + "'");
-    if (std::isinf(duration)) std::cout << "running " << deviceName << " until Ctrl-C\n" << std::flush;
+    if (std::isinf(duration))
+      std::cout << "running " << deviceName << (pool ? " until the window is closed or Ctrl-C\n" : " until Ctrl-C\n")
+                << std::flush;
 
-    // Graphics first: its context and meshes are ready (or it failed, exit 2)
+    // Graphics first: its context and meshes are ready (or it failed)
     // before the first haptic frame, and the scene is not touched by this
     // thread until then.
     std::unique_ptr<RunGraphics> graphics;
@@ -133,7 +185,10 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         graphics = std::make_unique<RunGraphics>(*r.scene, *run.scene, *loop, run.tool, graphicsOptions);
         graphics->start();
       } catch (const std::exception& e) {
-        std::cerr << "millsim run: error: graphics: " << e.what() << " (run with --no-graphics to go without)\n";
+        std::cerr << "millsim run: error: graphics: " << e.what()
+                  << (graphicsOptions.window ? " (run with --no-window to draw offscreen, or --no-graphics)"
+                                             : " (run with --no-graphics to go without)")
+                  << "\n";
         result = kExitBadInput;
         return;
       }
@@ -143,12 +198,24 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     auto previousInt = std::signal(SIGINT, onInterrupt);
     auto previousTerm = std::signal(SIGTERM, onInterrupt);
     loop->start(duration);
-    // The scene thread's part: drain the log, update the device fields.
+    // The scene thread's part: drain the log, update the device fields, and
+    // with a window, feed its HUD and do what its keys asked.
+    std::string status;
     while (!loop->finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      if (gInterrupted.load()) loop->stop();
+      if (gInterrupted.load() || controls.closed()) loop->stop();
       if (writer.drain(*loop) > 0) publishToDevice(*run.device, writer.last(), run.settings.rate);
-      loop->collectRetired();
+      if (!pool) {
+        loop->collectRetired();
+        continue;
+      }
+      pool->collect(*loop);
+      for (const WindowCommand& c : controls.take())
+        if (c.kind == WindowCommand::Kind::SelectRenderer) status = pool->select(std::size_t(c.index), *loop);
+      if (std::string s = pool->followDeviceField(*loop); !s.empty()) status = s;
+      HudState h = hud.state(status);
+      h.fading = std::string(h.renderer) != pool->typeName(pool->current());
+      controls.setHud(h);
     }
     loop->join();
     writer.drain(*loop);
@@ -178,11 +245,13 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
     if (graphics) {
-      std::cout << std::fixed << std::setprecision(1) << "  graphics: " << graphicsStats.frames << " frames at "
+      std::cout << std::fixed << std::setprecision(1) << (graphicsStats.window ? "  window: " : "  graphics: ")
+                << graphicsStats.frames << " frames at "
                 << graphicsOptions.width << "x" << graphicsOptions.height << ", mean " << graphicsStats.meanMs
                 << " ms, p95 " << graphicsStats.p95Ms << " ms, with re-meshing " << graphicsStats.meanUpdateMs
                 << " ms (" << graphicsStats.updateFrames << " frames); first mesh " << graphicsStats.meshSeconds * 1e3
-                << " ms; " << graphicsStats.gl << "\n";
+                << " ms; first frame " << graphicsStats.firstFrameSeconds * 1e3 << " ms after start; "
+                << graphicsStats.gl << "\n";
       std::cout.unsetf(std::ios::fixed);
       if (!args->screenshot.empty() && graphicsError.empty()) std::cout << "  screenshot: " << args->screenshot << "\n";
     }

@@ -8,6 +8,9 @@
 #include "millsim/graphics/SceneRenderer.h"
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/VoxelScene.h"
+#include "millsim/window/AppWindow.h"
+#include "millsim/window/WindowModule.h"
+#include "RunControls.h"
 
 namespace millsim::app {
 
@@ -29,14 +32,17 @@ RunGraphics::~RunGraphics() {
 }
 
 void RunGraphics::start() {
-  const GraphicsModule& graphics = loadGraphicsModule();  // fails fast without OSMesa
-  (void)graphics;
+  startTime_ = Clock::now();
+  if (options_.window)
+    (void)loadWindowModule();  // fails fast without SDL2 or libGL
+  else
+    (void)loadGraphicsModule();  // fails fast without OSMesa
   for (std::size_t i = 0; i < haptic_.volumeCount(); ++i) {
     replicas_.push_back(std::make_unique<VolumeReplica>(*haptic_.volume(i).voxels));
     channels_.push_back(std::make_unique<BlockChannel>(kChannelBlocks));
     loop_.publishBlocks(i, *channels_.back());
   }
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] { options_.window ? runWindow() : run(); });
   while (state_.load(std::memory_order_acquire) == 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   if (state_.load() == 2) {
     thread_.join();
@@ -79,6 +85,8 @@ void RunGraphics::run() {
     const FrameRecord& f = loop_.newest().read();
     renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(tool_, f.out)) : std::nullopt);
     renderer->readPixels();  // finish the frame, as a display copy would
+    if (stats_.firstFrameSeconds == 0.0)
+      stats_.firstFrameSeconds = std::chrono::duration<double>(Clock::now() - startTime_).count();
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
     all.add(s);
     if (changed) updates.add(s);
@@ -103,6 +111,92 @@ void RunGraphics::run() {
   stats_.p95Ms = all.p95() * 1e3;
   stats_.updateFrames = long(updates.count());
   stats_.meanUpdateMs = updates.mean() * 1e3;
+}
+
+void RunGraphics::runWindow() {
+  std::unique_ptr<AppWindow> window;
+  try {
+    WindowOptions wo;
+    wo.width = options_.width;
+    wo.height = options_.height;
+    wo.title = options_.title;
+    wo.renderers = options_.renderers;
+    wo.pointer = options_.pointer != nullptr;
+    wo.pointerStart = options_.pointerStart;
+    wo.pointerDepthStep = options_.pointerDepthStep;
+    wo.toolRadius = tool_.tipRadius;
+    for (const auto& r : replicas_) wo.voxels.push_back(&r->volume());
+    const auto t0 = Clock::now();
+    window = loadWindowModule().open(scene_, wo);
+    stats_.meshSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    stats_.gl = window->glDescription();
+    stats_.window = true;
+    // The mouse's tool is where the window put it before the first haptic frame.
+    if (options_.pointer) options_.pointer->set(window->pointer().pose, false);
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    state_.store(2, std::memory_order_release);
+    return;
+  }
+  state_.store(1, std::memory_order_release);
+
+  FrameTimer all, updates;
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.rate));
+  auto next = Clock::now();
+  auto frame = [&] {
+    const auto t0 = Clock::now();
+    if (!window->pollEvents()) options_.controls->close();
+    options_.controls->post(window->takeCommands());
+    if (options_.pointer) {
+      const PointerState p = window->pointer();
+      options_.pointer->set(p.pose, p.button);
+    }
+    bool changed = false;
+    for (std::size_t i = 0; i < replicas_.size(); ++i) {
+      const auto& blocks = replicas_[i]->apply(*channels_[i]);
+      if (!blocks.empty()) {
+        window->volumeChanged(i, blocks);
+        changed = true;
+      }
+    }
+    const FrameRecord& f = loop_.newest().read();
+    std::vector<ToolView> tools;
+    if (f.frame > 0 || f.t > 0.0) {
+      tools.push_back(toolView(tool_, f.out));
+      if (options_.pointer) {  // the mouse's own pose, where the renderer's tool is held back
+        ToolView ghost{tool_, f.device, false, glm::dvec3(0.0), true};
+        tools.push_back(ghost);
+      }
+    }
+    window->draw(tools, options_.controls->hud());
+    if (stats_.firstFrameSeconds == 0.0)
+      stats_.firstFrameSeconds = std::chrono::duration<double>(Clock::now() - startTime_).count();
+    if (options_.stallMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(options_.stallMs));
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    all.add(s);
+    if (changed) updates.add(s);
+  };
+  while (!stop_.load(std::memory_order_acquire)) {
+    frame();
+    next += period;
+    const auto now = Clock::now();
+    if (next < now) next = now;
+    std::this_thread::sleep_until(next);
+  }
+  frame();
+  if (!options_.screenshot.empty()) {
+    try {
+      loadGraphicsModule().writePng(window->readPixels(), options_.screenshot);
+    } catch (const std::exception& e) {
+      error_ = e.what();
+    }
+  }
+  stats_.frames = long(all.count());
+  stats_.meanMs = all.mean() * 1e3;
+  stats_.p95Ms = all.p95() * 1e3;
+  stats_.updateFrames = long(updates.count());
+  stats_.meanUpdateMs = updates.mean() * 1e3;
+  window.reset();  // closes the window on its own thread
 }
 
 RunGraphicsStats RunGraphics::stop() {

@@ -1,16 +1,21 @@
 #pragma once
-// The graphics thread of `millsim run`: its own OSMesa context, its own copy
-// of the voxels (one VolumeReplica per volume, fed by the haptic thread's
-// BlockChannels), drawing the newest haptic frame at its own rate. The haptic
-// thread never waits for it: it only pushes blocks into fixed rings and
-// publishes frames into a triple buffer (HapticLoop.h).
+// The graphics thread of `millsim run`: the window (libmillsim_window) when
+// there is a display, else an offscreen OSMesa context; its own copy of the
+// voxels (one VolumeReplica per volume, fed by the haptic thread's
+// BlockChannels), drawing the newest haptic frame at its own rate with the
+// same SceneDrawer either way. The haptic thread never waits for it: it only
+// pushes blocks into fixed rings and publishes frames into a triple buffer
+// (HapticLoop.h). With a window, keys and HUD numbers pass through
+// RunControls (scene thread) and the mouse through PointerInput (MouseDevice).
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "millsim/devices/MouseDevice.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/run/HapticLoop.h"
 
@@ -23,10 +28,23 @@ class VolumeReplica;
 
 namespace millsim::app {
 
+class RunControls;
+
 struct RunGraphicsOptions {
   int width = 512, height = 512;
   double rate = 30.0;                 // frames per second to aim for
   std::filesystem::path screenshot;   // written after the last frame if not empty
+  // The window instead of offscreen drawing (needs controls).
+  bool window = false;
+  std::string title;
+  std::vector<std::string> renderers;  // keys 1, 2, 3 …
+  RunControls* controls = nullptr;
+  PointerInput* pointer = nullptr;     // a MouseDevice's input, fed from the window's mouse
+  Pose pointerStart;
+  double pointerDepthStep = 2e-4;
+  // Test hook (MILLSIM_TEST_STALL_WINDOW_MS): the window thread sleeps this
+  // long every frame, to show that the haptic thread does not wait for it.
+  int stallMs = 0;
 };
 
 struct RunGraphicsStats {
@@ -36,6 +54,8 @@ struct RunGraphicsStats {
   double meanUpdateMs = 0.0;               // frames that re-meshed milled blocks
   long updateFrames = 0;
   std::string gl;                          // GL version and renderer
+  bool window = false;
+  double firstFrameSeconds = 0.0;          // from start() to the first frame shown
 };
 
 class RunGraphics {
@@ -54,6 +74,7 @@ public:
 
 private:
   void run();
+  void runWindow();
 
   const Scene& scene_;
   VoxelScene& haptic_;
@@ -62,6 +83,7 @@ private:
   RunGraphicsOptions options_;
   std::vector<std::unique_ptr<BlockChannel>> channels_;
   std::vector<std::unique_ptr<VolumeReplica>> replicas_;
+  std::chrono::steady_clock::time_point startTime_;
   std::thread thread_;
   std::atomic<int> state_{0};  // 0 starting, 1 ready, 2 failed
   std::atomic<bool> stop_{false};

@@ -4,6 +4,7 @@
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/AresDevice.h"
 #include "millsim/devices/HandDevice.h"
+#include "millsim/devices/MouseDevice.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/renderers/BarbicRenderer.h"
@@ -17,7 +18,7 @@ void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
-                            &HandDevice::type(), &AresDevice::type()})
+                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type()})
     r.add(*t);
 }
 

@@ -13,10 +13,14 @@
 
 namespace millsim {
 
+class PointerInput;
+
 struct DriverOptions {
   // Simulated devices: follow this trajectory instead of the one in the
   // scene (millsim replay --trajectory). Hardware ignores it.
   const Trajectory* trajectory = nullptr;
+  // MouseDevice: the window's mouse (millsim/devices/MouseDevice.h).
+  PointerInput* pointer = nullptr;
 };
 
 class HapticsDevice : public ChildNode {

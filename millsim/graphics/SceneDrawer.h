@@ -73,6 +73,8 @@ public:
   // The cut planes, scene ClipPlanes first (SceneView::cutPlanes), may be
   // moved, turned and switched off; they cut the drawing only.
   std::vector<CutPlane>& cutPlanes() { return scene_.cutPlanes; }
+  // SceneView::addUserCut: the user's own plane, facing `towards`.
+  int addUserCut(const glm::dvec3& towards) { return scene_.addUserCut(towards); }
 
   // Draws one frame into the current framebuffer of width × height pixels.
   void draw(int width, int height, const std::vector<ToolView>& tools);

@@ -7,7 +7,7 @@ namespace millsim {
 const char* frameLogHeader() {
   return "t,x,y,z,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,frame_us,"
          "draw_x,draw_y,draw_z,draw_qw,draw_qx,draw_qy,draw_qz,proxy_x,proxy_y,proxy_z,ip_x,ip_y,ip_z,"
-         "button,removed_mm3,flags,period_us\n";
+         "button,removed_mm3,flags,period_us,renderer\n";
 }
 
 void appendFrameRow(std::string& out, const FrameRecord& r) {
@@ -32,6 +32,8 @@ void appendFrameRow(std::string& out, const FrameRecord& r) {
   num(r.removedVolume * 1e9);
   out += std::to_string(o.flags) + ',';
   out += formatNumber(r.periodUs);
+  out += ',';
+  out += r.renderer;
   out += '\n';
 }
 
@@ -43,6 +45,7 @@ std::size_t FrameLogWriter::drain(HapticLoop& loop) {
   return loop.records().drain([this](const FrameRecord& r) {
     last_ = r;
     ++written_;
+    if (observer_) observer_(r);
     if (!out_) return;
     row_.clear();
     appendFrameRow(row_, r);

@@ -3,6 +3,7 @@
 // live loop alike (docs/algorithms.md, "Logs"). The first nine columns are a
 // trajectory (t,x,y,z,qw,qx,qy,qz … button is further on), so a log can be
 // replayed; the rest is what the renderer and the safety layer did.
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -17,6 +18,8 @@ void appendFrameRow(std::string& out, const FrameRecord& r);
 class FrameLogWriter {
 public:
   explicit FrameLogWriter(std::ostream* out);
+  // Also hands every record to `observer` (the window's HUD statistics).
+  void observe(std::function<void(const FrameRecord&)> observer) { observer_ = std::move(observer); }
   // Writes every record the loop has published so far; returns how many.
   std::size_t drain(HapticLoop& loop);
   const FrameRecord& last() const { return last_; }
@@ -24,6 +27,7 @@ public:
 
 private:
   std::ostream* out_;
+  std::function<void(const FrameRecord&)> observer_;
   std::string row_;
   FrameRecord last_;
   long written_ = 0;

@@ -86,6 +86,8 @@ HapticLoop::HapticLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algor
       }()),
       records_(settings.logCapacity) {
   if (!driver_) throw std::invalid_argument("HapticLoop needs a device driver");
+  names_.push_back(switch_.current().name());
+  currentName_ = names_.back().c_str();
 }
 
 HapticLoop::~HapticLoop() {
@@ -106,14 +108,22 @@ void HapticLoop::publishBlocks(std::size_t index, BlockChannel& channel) {
   publishedEpoch_[index] = scene_.volume(index).millEpoch;
 }
 
-bool HapticLoop::replaceRenderer(std::unique_ptr<HapticAlgorithm> next) {
-  HapticAlgorithm* expected = nullptr;
-  if (!incoming_.compare_exchange_strong(expected, next.get(), std::memory_order_acq_rel)) return false;
-  next.release();
+bool HapticLoop::replaceRenderer(std::unique_ptr<HapticAlgorithm>& next) {
+  if (!next) throw std::invalid_argument("HapticLoop::replaceRenderer: no algorithm");
+  // Only this thread fills the mailbox, so an empty one stays empty until the
+  // store below; the name goes first, and the mailbox's release publishes it.
+  if (incoming_.load(std::memory_order_acquire) != nullptr) return false;
+  const std::string name = next->name();
+  auto known = std::find(names_.begin(), names_.end(), name);
+  if (known == names_.end()) known = names_.insert(names_.end(), name);
+  incomingName_.store(known->c_str(), std::memory_order_relaxed);
+  incoming_.store(next.release(), std::memory_order_release);
   return true;
 }
 
-void HapticLoop::collectRetired() { delete retired_.exchange(nullptr, std::memory_order_acq_rel); }
+std::unique_ptr<HapticAlgorithm> HapticLoop::takeRetired() {
+  return std::unique_ptr<HapticAlgorithm>(retired_.exchange(nullptr, std::memory_order_acq_rel));
+}
 
 void HapticLoop::frame(double t, double dt, double periodUs) {
   const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
@@ -128,8 +138,10 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
   const Pose device{settings_.calibrationRotation * lastReading_.pose.position + settings_.calibrationOffset,
                     settings_.calibrationRotation * lastReading_.pose.orientation};
   if (nextFrame_ == 0) switch_.current().reset(device);
-  if (HapticAlgorithm* next = incoming_.exchange(nullptr, std::memory_order_acq_rel))
+  if (HapticAlgorithm* next = incoming_.exchange(nullptr, std::memory_order_acq_rel)) {
+    currentName_ = incomingName_.load(std::memory_order_relaxed);
     switch_.replace(std::unique_ptr<HapticAlgorithm>(next), device);
+  }
 
   const bool button = haveReading_ && lastReading_.button;
   HapticOutput out = switch_.step(scene_, HapticInput{device, dt, button});
@@ -170,6 +182,7 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
   r.computeUs = settings_.timing ? microseconds(Clock::now() - begin) : 0.0;
   r.periodUs = periodUs;
   r.removedVolume = stats_.removedVolume;
+  r.renderer = currentName_;
   records_.push(r);
   newest_.publish();
 

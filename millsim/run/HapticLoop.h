@@ -17,6 +17,7 @@
 // allocate once running (algorithms retire through a mailbox to be freed on
 // the scene thread).
 #include <atomic>
+#include <deque>
 #include <memory>
 #include <string>
 #include <thread>
@@ -30,7 +31,7 @@
 #include "millsim/run/FrameHistogram.h"
 #include "millsim/run/RendererSwitch.h"
 #include "millsim/run/SpscRing.h"
-#include "millsim/run/TripleBuffer.h"
+#include "millsim/driver/TripleBuffer.h"
 
 namespace millsim {
 
@@ -51,6 +52,9 @@ struct FrameRecord {
   double computeUs = 0.0; // device I/O + step + milling; 0 unless timing is on
   double periodUs = 0.0;  // time since the previous frame started
   double removedVolume = 0.0;  // m³ milled so far
+  // The renderer in charge (during a cross-fade, the one fading in): its
+  // HapticAlgorithm::name(), interned by the loop for the loop's lifetime.
+  const char* renderer = "";
 };
 
 // The loop's fixed parameters, compiled from the device node on the scene thread.
@@ -113,11 +117,15 @@ public:
   // does too). Idempotent.
   void finish();
 
-  // Any thread but the haptic one: the algorithm takes over at the next frame,
-  // cross-faded (RendererSwitch). False if the previous swap is still pending.
-  bool replaceRenderer(std::unique_ptr<HapticAlgorithm> next);
-  // Scene thread: frees algorithms the haptic thread has retired.
-  void collectRetired();
+  // One thread but the haptic one (the scene thread): the algorithm takes
+  // over at the next frame, cross-faded (RendererSwitch). False, and `next`
+  // untouched, if the previous swap is still pending.
+  bool replaceRenderer(std::unique_ptr<HapticAlgorithm>& next);
+  bool replaceRenderer(std::unique_ptr<HapticAlgorithm>&& next) { return replaceRenderer(next); }
+  // Scene thread: an algorithm the haptic thread has retired (or null), to be
+  // kept for a later swap back or freed off the haptic thread.
+  std::unique_ptr<HapticAlgorithm> takeRetired();
+  void collectRetired() { takeRetired().reset(); }
 
   // The scene thread drains these; graphics reads the snapshot.
   SpscRing<FrameRecord>& records() { return records_; }
@@ -153,6 +161,11 @@ private:
   std::atomic<HapticAlgorithm*> incoming_{nullptr};
   std::atomic<HapticAlgorithm*> retired_{nullptr};
   std::unique_ptr<HapticAlgorithm> retiredHeld_;  // waiting for the retired mailbox to empty
+  // Renderer names for FrameRecord::renderer: interned by the scene thread (a
+  // deque never moves its strings), handed over with the algorithm.
+  std::deque<std::string> names_;
+  std::atomic<const char*> incomingName_{nullptr};
+  const char* currentName_ = "";
 
   std::thread thread_;
   std::atomic<bool> stopRequested_{false};

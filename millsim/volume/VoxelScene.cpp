@@ -100,6 +100,16 @@ double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
     removed += res.removedVolume;
     if (!v->changed.empty()) ++v->millEpoch;
   }
+  // Every shell in use follows at once, not when its renderer next looks: a
+  // renderer waiting in a RendererPool takes over with a current shell, and
+  // never rebuilds one whole on the haptic thread.
+  for (Shell& s : shells_) {
+    Volume& v = *volumes_[s.volume];
+    if (v.millEpoch == s.epoch + 1) {
+      s.shell->update(*v.voxels, v.changed);
+      s.epoch = v.millEpoch;
+    }
+  }
   return removed;
 }
 

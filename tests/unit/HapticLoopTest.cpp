@@ -13,7 +13,7 @@
 #include "millsim/run/FrameLog.h"
 #include "millsim/run/HapticLoop.h"
 #include "millsim/run/SpscRing.h"
-#include "millsim/run/TripleBuffer.h"
+#include "millsim/driver/TripleBuffer.h"
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
@@ -207,7 +207,43 @@ TEST(HapticLoop, LogRowsCarryEveryFrameAndThePeriod) {
   EXPECT_EQ(log.substr(0, log.find('\n') + 1), frameLogHeader());
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 4);
   EXPECT_NE(log.find("\n0.002,0,0.01,0,1,0,0,0,0.5,0,0,"), std::string::npos) << log;
-  EXPECT_EQ(log.substr(log.size() - 6), ",1000\n");
+  EXPECT_EQ(log.substr(log.size() - 15), ",1000,Constant\n") << "period_us, then the renderer's name";
+}
+
+// A swap shows in the log: the rows after it name the new renderer.
+TEST(HapticLoop, LogNamesTheRendererInChargeAcrossASwap) {
+  struct Named final : HapticAlgorithm {
+    explicit Named(std::string n) : n_(std::move(n)) {}
+    void reset(const Pose&) override {}
+    HapticOutput step(HapticScene&, const HapticInput& in) override {
+      HapticOutput o;
+      o.drawnTool = in.device;
+      return o;
+    }
+    std::string name() const override { return n_; }
+    std::string n_;
+  };
+  VoxelScene scene;
+  FakeDevice::Shared dev;
+  HapticLoop loop(scene, std::make_unique<Named>("First"), std::make_unique<FakeDevice>(dev), settings());
+  std::vector<std::string> names;
+  auto drain = [&] { loop.records().drain([&](const FrameRecord& r) { names.push_back(r.renderer); }); };
+  loop.stepSimulated();
+  std::unique_ptr<HapticAlgorithm> next = std::make_unique<Named>("Second");
+  ASSERT_TRUE(loop.replaceRenderer(next));
+  EXPECT_EQ(next, nullptr) << "the loop took it";
+  std::unique_ptr<HapticAlgorithm> third = std::make_unique<Named>("Third");
+  EXPECT_FALSE(loop.replaceRenderer(third)) << "one swap at a time";
+  EXPECT_NE(third, nullptr) << "a refused algorithm stays with the caller";
+  loop.stepSimulated();
+  loop.stepSimulated();
+  drain();
+  EXPECT_EQ(names, (std::vector<std::string>{"First", "Second", "Second"}));
+  // The fade ends after 100 ms; the retired algorithm comes back to this thread.
+  for (int i = 0; i < 150; ++i) loop.stepSimulated();
+  auto back = loop.takeRetired();
+  ASSERT_NE(back, nullptr);
+  EXPECT_EQ(back->name(), "First");
 }
 
 TEST(HapticLoop, RealTimeThreadRunsStopsOnDeviceFailureAndZeroesOutput) {

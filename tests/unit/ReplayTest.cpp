@@ -170,7 +170,8 @@ TEST(Replay, LineProxyDrawnShaftStaysWithTheDeviceWhileMillingStraightDown) {
   while (std::getline(in, line)) {
     std::vector<double> v;
     std::stringstream cells(line);
-    for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+    // Every column but the last, the renderer's name.
+    for (std::string c; std::getline(cells, c, ',');) v.push_back(std::isdigit(c.back()) ? std::stod(c) : 0.0);
     ASSERT_GE(v.size(), 23u);
     const glm::dquat device(v[4], v[5], v[6], v[7]), drawn(v[19], v[20], v[21], v[22]);
     const double cosine = glm::dot(device * glm::dvec3(0, 1, 0), drawn * glm::dvec3(0, 1, 0));

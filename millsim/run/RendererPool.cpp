@@ -1,0 +1,96 @@
+#include "millsim/run/RendererPool.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "millsim/core/Scene.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/run/RunSetup.h"
+#include "millsim/volume/VoxelScene.h"
+
+namespace millsim {
+
+namespace {
+// The keys 1, 2, 3 of the window, in the paper's order (#1, #2, #3).
+const char* const kKeyed[] = {"LineProxyRenderer", "SurfacePointRenderer", "BarbicRenderer"};
+}  // namespace
+
+RendererPool::RendererPool(Scene& scene, CompiledRun& run, const HapticAlgorithm* initial) : run_(run) {
+  std::vector<std::string> types;
+  for (const char* t : kKeyed)
+    if (scene.registry.find(t)) types.push_back(t);
+  for (const NodeType* t : scene.registry.all()) {
+    if (std::find(types.begin(), types.end(), t->name) != types.end()) continue;
+    if (dynamic_cast<HapticsRendererNode*>(t->create().get())) types.push_back(t->name);
+  }
+  const std::shared_ptr<HapticsRendererNode> own = run.device->hapticsRenderer.get();
+  const std::string initialType = run.rendererName;
+  for (const std::string& type : types) {
+    Slot s;
+    s.type = type;
+    if (own && own->typeName() == type) {
+      s.node = own;
+    } else {
+      s.node = scene.registry.create(type);
+    }
+    if (type == initialType) {
+      s.identity = initial;
+      current_ = slots_.size();
+    } else {
+      auto* node = dynamic_cast<HapticsRendererNode*>(s.node.get());
+      try {
+        s.algorithm = node->compile(run.tool, *run.scene);
+      } catch (const std::exception& e) {
+        throw std::runtime_error("cannot prepare " + type + " for a live swap: " + e.what());
+      }
+      s.identity = s.algorithm.get();
+    }
+    slots_.push_back(std::move(s));
+  }
+  fieldSeen_ = own.get();
+}
+
+RendererPool::~RendererPool() = default;
+
+std::vector<std::string> RendererPool::typeNames() const {
+  std::vector<std::string> out;
+  for (const Slot& s : slots_) out.push_back(s.type);
+  return out;
+}
+
+std::string RendererPool::select(std::size_t slot, HapticLoop& loop) {
+  if (slot >= slots_.size()) return "no renderer on that key";
+  collect(loop);
+  if (slot == current_) return slots_[slot].type + " is already rendering";
+  Slot& s = slots_[slot];
+  if (!s.algorithm) return s.type + " is still fading out; try again";
+  if (!loop.replaceRenderer(s.algorithm)) return "a renderer swap is still pending; try again";
+  current_ = slot;
+  // The scene graph says what runs: the device's field follows the swap.
+  auto node = std::dynamic_pointer_cast<HapticsRendererNode>(s.node);
+  run_.device->hapticsRenderer.set(node);
+  fieldSeen_ = node.get();
+  run_.rendererName = s.type;
+  return "switched to " + s.type;
+}
+
+void RendererPool::collect(HapticLoop& loop) {
+  while (auto back = loop.takeRetired()) {
+    auto it = std::find_if(slots_.begin(), slots_.end(), [&](const Slot& s) { return s.identity == back.get(); });
+    if (it != slots_.end() && !it->algorithm) it->algorithm = std::move(back);
+    // An algorithm the pool does not know is freed here, on the scene thread.
+  }
+}
+
+std::string RendererPool::followDeviceField(HapticLoop& loop) {
+  const Node* now = run_.device->hapticsRenderer.get().get();
+  if (now == fieldSeen_ || !now) return {};
+  fieldSeen_ = now;
+  for (std::size_t i = 0; i < slots_.size(); ++i)
+    if (slots_[i].node.get() == now) return select(i, loop);
+  return "hapticsRenderer was set to a new " + std::string(now->typeName()) +
+         " node; a node other than the prepared ones takes effect at the next run";
+}
+
+}  // namespace millsim

@@ -1,0 +1,62 @@
+#pragma once
+// RendererPool: every haptics renderer type a scene can use, compiled once on
+// the scene thread before a live run, so that a swap while running (keys 1, 2,
+// 3 in the window, or a new node in the device's hapticsRenderer field) hands
+// a ready algorithm to HapticLoop::replaceRenderer: nothing is built on the
+// haptic thread, and Barbic's point shells exist before it takes over (the
+// VoxelScene keeps every shell current with milling).
+//
+// Slots: LineProxyRenderer, SurfacePointRenderer, BarbicRenderer (keys 1, 2,
+// 3), then any other registered renderer type (plugins) by name. The device's
+// own renderer node serves its type's slot, so its authored fields hold; the
+// other types run with their defaults. Scene thread only.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "millsim/haptics/HapticsRenderer.h"
+
+namespace millsim {
+
+class HapticLoop;
+class HapticsRendererNode;
+class Node;
+class Scene;
+struct CompiledRun;
+
+class RendererPool {
+public:
+  // `initial`: the algorithm the loop starts with (compiled from the device's
+  // renderer node; the pool only remembers it). Throws std::runtime_error if
+  // one of the other types cannot be compiled for this scene.
+  RendererPool(Scene& scene, CompiledRun& run, const HapticAlgorithm* initial);
+  ~RendererPool();
+
+  std::size_t size() const { return slots_.size(); }
+  const std::string& typeName(std::size_t slot) const { return slots_[slot].type; }
+  std::vector<std::string> typeNames() const;
+  std::size_t current() const { return current_; }
+
+  // Hands slot `slot`'s algorithm to the loop and sets the device's
+  // hapticsRenderer field to its node. Returns what to tell the user.
+  std::string select(std::size_t slot, HapticLoop& loop);
+  // Takes algorithms the loop retired back into their slots.
+  void collect(HapticLoop& loop);
+  // The device's hapticsRenderer field was set (by a route or a plugin): swap
+  // to that node's slot. Returns what to tell the user (empty: nothing changed).
+  std::string followDeviceField(HapticLoop& loop);
+
+private:
+  struct Slot {
+    std::string type;
+    std::shared_ptr<Node> node;                  // the renderer node (the device's, or a default one)
+    std::unique_ptr<HapticAlgorithm> algorithm;  // null while the loop has it
+    const HapticAlgorithm* identity = nullptr;   // recognises it when it comes back
+  };
+  CompiledRun& run_;
+  std::vector<Slot> slots_;
+  std::size_t current_ = 0;
+  const Node* fieldSeen_ = nullptr;  // the hapticsRenderer value last acted on
+};
+
+}  // namespace millsim
