@@ -182,7 +182,12 @@ void SceneDrawer::drawTool(const ToolView& t) {
   const ClipPlanes none;
   const glm::dmat4 pose =
       glm::translate(glm::dmat4(1.0), t.pose.position) * glm::mat4_cast(glm::normalize(t.pose.orientation));
-  if (t.ghost) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);  // wire: it never hides the renderer's tool
+  // The ghost in wire and over everything: it shows where the hand is even
+  // inside the tooth, and never hides the renderer's tool.
+  if (t.ghost) {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDisable(GL_DEPTH_TEST);
+  }
   program_->setObject(glm::scale(pose, glm::dvec3(t.geometry.tipRadius)), t.ghost ? kGhost : kBurr,
                       t.ghost ? &kGhost.diffuse : &kBurr.diffuse, false, none);
   sphere_->draw();
@@ -191,7 +196,10 @@ void SceneDrawer::drawTool(const ToolView& t) {
                                                  t.geometry.shaftRadius));
   program_->setObject(shaft, t.ghost ? kGhost : kShaft, t.ghost ? &kGhost.diffuse : &kShaft.diffuse, false, none);
   cylinder_->draw();
-  if (t.ghost) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  if (t.ghost) {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glEnable(GL_DEPTH_TEST);
+  }
   if (t.hasIntersection && !t.ghost) {
     // As thick as the shaft and drawn over everything: the point is where
     // the shaft enters the tooth, so the tooth would hide it (paper, Fig. 14).

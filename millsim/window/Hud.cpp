@@ -22,16 +22,28 @@ void drawHud(const HudState& hud, const HudExtras& extras) {
     ImGui::Text("milling      %s", hud.milling ? "ON" : "off");
     ImGui::Text("view         %s   (window %4.1f ms)", extras.viewName.c_str(), extras.windowMs);
     if (!hud.status.empty()) ImGui::TextColored(ImVec4(1.f, 0.85f, 0.3f, 1.f), "%s", hud.status.c_str());
-    ImGui::Separator();
-    std::string keys;
-    for (std::size_t i = 0; i < extras.renderers.size(); ++i)
-      keys += std::to_string(i + 1) + " " + extras.renderers[i] + "  ";
-    ImGui::TextDisabled("%s", keys.c_str());
-    ImGui::TextDisabled("drag: turn  wheel: zoom  shift/middle-drag: pan  PgUp/PgDn: viewpoint  F: frame all");
-    ImGui::TextDisabled("C: user cut  F1-F6: toggle cut  Tab: next cut  Ctrl+drag: move cut  H: HUD  Esc: quit");
-    if (extras.pointer)
-      ImGui::TextDisabled("mouse tool: move = burr  left/Space = mill  right-drag = turn  Ctrl+wheel = depth  "
-                          "Alt+drag = turn view");
+  }
+  ImGui::End();
+}
+
+void drawHelpLine(const HudExtras& extras) {
+  std::string keys;
+  for (std::size_t i = 0; i < extras.renderers.size(); ++i)
+    keys += std::to_string(i + 1) + " " + extras.renderers[i] + "   ";
+  std::string help = keys + "|  drag turn · wheel zoom · shift/middle-drag pan · PgUp/PgDn viewpoint · F frame all · "
+                            "C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move cut · H HUD · Esc quit";
+  if (extras.pointer)
+    help += "  |  mouse tool: move = burr · left/Space = mill · right-drag turn tool · Ctrl+wheel depth · "
+            "Alt/middle-drag turn view";
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.f, size.y), ImGuiCond_Always, ImVec2(0.f, 1.f));
+  ImGui::SetNextWindowSize(ImVec2(size.x, 0.f), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.45f);
+  if (ImGui::Begin("Keys", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs |
+                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing)) {
+    ImGui::PushTextWrapPos(0.f);
+    ImGui::TextDisabled("%s", help.c_str());
+    ImGui::PopTextWrapPos();
   }
   ImGui::End();
 }
@@ -39,7 +51,7 @@ void drawHud(const HudState& hud, const HudExtras& extras) {
 bool drawCutPanel(std::vector<CutPlane>& planes, int& active, const glm::dvec3& centre, double size) {
   if (planes.empty()) return false;
   bool changed = false;
-  ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_Always, ImVec2(0.f, 1.f));
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 10, 10), ImGuiCond_Always, ImVec2(1.f, 0.f));
   ImGui::SetNextWindowBgAlpha(0.55f);
   if (ImGui::Begin("Cut planes", nullptr,
                    ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove)) {

@@ -177,6 +177,7 @@ private:
     if (showHud_) {
       HudExtras extras{options_.renderers, viewName(), frameMs_, options_.pointer};
       drawHud(hud, extras);
+      drawHelpLine(extras);
       const SceneView& sv = drawer_->scene();
       drawCutPanel(drawer_->cutPlanes(), activeCut_, sv.centre(), 0.5 * glm::length(sv.boundsMax - sv.boundsMin));
     }

@@ -1,0 +1,195 @@
+#!/usr/bin/python3
+"""The window tests (ctest label `window`), run under tests/window/with-xvfb.sh.
+
+  window_check.py view-and-swap MILLSIM SCENE OUTDIR
+  window_check.py swap MILLSIM SCENE OUTDIR
+  window_check.py mouse MILLSIM SCENE OUTDIR
+  window_check.py stall MILLSIM SCENE OUTDIR
+
+Each starts `millsim run` with a window, drives it with xdotool as a person
+would, and checks what the window showed (captured with ImageMagick's
+`import`) and what the frame log recorded. Exit 0 when every check holds,
+1 naming each one that failed.
+"""
+import csv
+import os
+import subprocess
+import sys
+import time
+
+import matplotlib.image
+import numpy as np
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def xdo(*args):
+    return subprocess.run(["xdotool", *map(str, args)], check=True, capture_output=True, text=True).stdout.strip()
+
+
+def start(millsim, scene, out, *extra, env=None):
+    log = os.path.join(out, "log.csv")
+    cmd = [millsim, "run", scene, "--log", log, "--screenshot", os.path.join(out, "final.png"), "--size", "640x480",
+           *extra]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            env=dict(os.environ, **(env or {})))
+    # The window appears once the renderers are compiled and the meshes built.
+    deadline = time.time() + 60
+    window = ""
+    while time.time() < deadline and proc.poll() is None:
+        found = subprocess.run(["xdotool", "search", "--onlyvisible", "--pid", str(proc.pid)], capture_output=True,
+                               text=True).stdout.split()
+        if found:
+            window = found[0]
+            break
+        time.sleep(0.2)
+    if not window:
+        output = proc.communicate(timeout=60)[0] if proc.poll() is None else proc.stdout.read()
+        print(output)
+        sys.exit("window_check: no window of millsim appeared within 60 s")
+    time.sleep(0.8)  # a few frames drawn
+    return proc, window, log
+
+
+def finish(proc):
+    output, _ = proc.communicate(timeout=120)
+    print(output)
+    check(proc.returncode == 0, f"millsim run exited 0 (got {proc.returncode})")
+    return output
+
+
+def capture(window, path):
+    subprocess.run(["import", "-window", window, path], check=True, capture_output=True)
+    return matplotlib.image.imread(path)[..., :3]
+
+
+def differing(a, b):
+    if a.shape != b.shape:
+        return 1.0
+    return float(np.mean(np.any(np.abs(a - b) > 0.06, axis=-1)))
+
+
+def read_log(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return rows
+
+
+def lit_fraction(img):
+    # Pixels well away from the dark background (0.1, 0.12, 0.15).
+    return float(np.mean(np.max(img, axis=-1) > 0.35))
+
+
+def view_and_swap(millsim, scene, out):
+    proc, window, log = start(millsim, scene, out, "--duration", "7")
+    title = xdo("getwindowname", window)
+    check("MillSim" in title, f"the window's title names MillSim ('{title}')")
+    before = capture(window, os.path.join(out, "before.png"))
+    check(lit_fraction(before) > 0.03, f"the window shows the tooth ({lit_fraction(before):.1%} of pixels lit)")
+    # Left-drag across the middle of the window turns the scene about its centre.
+    xdo("mousemove", "--window", window, 320, 300)
+    xdo("mousedown", 1)
+    for x in range(330, 520, 10):
+        xdo("mousemove", "--window", window, x, 300)
+        time.sleep(0.02)
+    xdo("mouseup", 1)
+    time.sleep(0.6)
+    turned = capture(window, os.path.join(out, "turned.png"))
+    check(differing(before, turned) > 0.02, f"a left-drag changes the view ({differing(before, turned):.1%} of pixels)")
+    xdo("key", "--window", window, "Next")  # Page Down: the next Viewpoint
+    time.sleep(0.6)
+    paged = capture(window, os.path.join(out, "paged.png"))
+    check(differing(turned, paged) > 0.02, f"Page Down changes the viewpoint ({differing(turned, paged):.1%} of pixels)")
+    xdo("key", "--window", window, "3")
+    finish(proc)
+    rows = read_log(log)
+    check(len(rows) > 3000, f"the log has a row per haptic frame ({len(rows)} rows)")
+    names = [r["renderer"] for r in rows]
+    check(names[0] == "SurfacePointRenderer", f"the run starts with the scene's renderer ({names[0]})")
+    if "BarbicRenderer" not in names:
+        check(False, "key 3 swaps to BarbicRenderer (no row names it)")
+    else:
+        first = names.index("BarbicRenderer")
+        check(all(n == "BarbicRenderer" for n in names[first:]), "every row after the swap names BarbicRenderer")
+    final = matplotlib.image.imread(os.path.join(out, "final.png"))[..., :3]
+    check(lit_fraction(final) > 0.03, "the --screenshot of the window is not blank")
+
+
+def swap(millsim, scene, out):
+    # The burr is held pressed into the tooth (tests/data/window/press.x3d), where
+    # SurfacePointRenderer and BarbicRenderer disagree by most of a newton.
+    proc, window, log = start(millsim, scene, out, "--duration", "5")
+    time.sleep(2.0)
+    xdo("key", "--window", window, "3")
+    finish(proc)
+    rows = read_log(log)
+    names = [r["renderer"] for r in rows]
+    if "BarbicRenderer" not in names:
+        check(False, "key 3 swaps to BarbicRenderer (no row names it)")
+        return
+    first = names.index("BarbicRenderer")
+    check(first > 1500 and len(rows) - first > 500, f"the swap came mid-press (frame {first} of {len(rows)})")
+    force = np.array([[float(r["fx"]), float(r["fy"]), float(r["fz"])] for r in rows])
+    steps = np.linalg.norm(np.diff(force, axis=0), axis=1)
+    jump = np.linalg.norm(force[first + 110:first + 130].mean(axis=0) - force[first - 20:first].mean(axis=0))
+    usual = steps[first - 500:first - 1].max()
+    fade = steps[first - 1:first + 110].max()
+    check(jump > 0.2, f"the two renderers' forces differ ({jump:.3f} N), so the swap is a real test")
+    # A 100-frame linear cross-fade spreads the jump over 100 steps; allow 10.
+    check(fade <= 0.1 * jump + 2.0 * usual + 1e-3,
+          f"the swap's largest force step {fade:.4f} N is within the cross-fade's bound "
+          f"(0.1 x jump {jump:.3f} N + 2 x the largest step before {usual:.4f} N)")
+
+
+def mouse(millsim, scene, out):
+    proc, window, log = start(millsim, scene, out, "--duration", "8")
+    # Sweep the cursor along the top of the window, then into the tooth with the button held.
+    for x in range(100, 560, 20):
+        xdo("mousemove", "--window", window, x, 120)
+        time.sleep(0.03)
+    xdo("mousemove", "--window", window, 320, 200)
+    time.sleep(0.2)
+    xdo("mousedown", 1)
+    for i in range(60):
+        xdo("mousemove", "--window", window, 310 + (i % 5) * 4, 200 + i)
+        time.sleep(0.04)
+    xdo("mouseup", 1)
+    finish(proc)
+    rows = read_log(log)
+    x = np.array([float(r["x"]) for r in rows])
+    check(x.max() - x.min() > 0.005, f"the logged device position follows the cursor (x spans {1e3 * (x.max() - x.min()):.1f} mm)")
+    pressed = sum(r["button"] == "1" for r in rows)
+    check(pressed > 100, f"the left button is the milling switch ({pressed} frames with button 1)")
+    removed = float(rows[-1]["removed_mm3"])
+    check(removed > 0.0, f"milling with the button held removes material ({removed:.3f} mm³)")
+
+
+def stall(millsim, scene, out):
+    # The window thread sleeps 400 ms per frame; the haptic thread must not care.
+    proc, window, log = start(millsim, scene, out, "--duration", "4", env={"MILLSIM_TEST_STALL_WINDOW_MS": "400"})
+    output = finish(proc)
+    rows = read_log(log)
+    check(len(rows) >= 0.8 * 4000,
+          f"with the window stalled 400 ms per frame the haptic loop still ran {len(rows)} of 4000 frames")
+    window_frames = [l for l in output.splitlines() if l.strip().startswith("window:")]
+    check(bool(window_frames) and int(window_frames[0].split()[1]) <= 15,
+          f"and the window really was stalled ({window_frames[0].strip() if window_frames else 'no window line'})")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "stall"):
+        sys.exit(__doc__)
+    mode, millsim, scene, out = sys.argv[1:]
+    os.makedirs(out, exist_ok=True)
+    for name in os.listdir(out):
+        os.remove(os.path.join(out, name))
+    {"view-and-swap": view_and_swap, "swap": swap, "mouse": mouse, "stall": stall}[mode](millsim, scene, out)
+    if failures:
+        print(f"{len(failures)} check(s) failed")
+        sys.exit(1)
