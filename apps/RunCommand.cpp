@@ -18,6 +18,7 @@
 #include "NumberArgs.h"
 #include "ImageArgs.h"
 #include "RunGraphics.h"
+#include "RunSound.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/run/FrameLog.h"
@@ -66,6 +67,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     std::string scene, log, renderer, trajectory, screenshot, size = "512x512";
     double duration = 0.0;
     bool noGraphics = false;
+    std::string soundOut; bool noSound = false;  // RunSound
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
@@ -78,6 +80,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_flag("--no-graphics", args->noGraphics, "Run without a graphics thread (no GL context, no meshes)");
   cmd->add_option("--screenshot", args->screenshot, "PNG of the last graphics frame, written at the end");
   cmd->add_option("--size", args->size, "Graphics frame size WIDTHxHEIGHT (default 512x512)");
+  cmd->add_option("--sound-out", args->soundOut, "WAV file of the milling sound (16-bit PCM mono, the run's length)");
+  cmd->add_flag("--no-sound", args->noSound, "Do not play the milling sound live");
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
@@ -91,7 +95,9 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     CompiledRun run;
     double duration = 0.0;
     RunGraphicsOptions graphicsOptions;
+    std::unique_ptr<RunSound> sound;
     try {
+      if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       if (args->noGraphics && !args->screenshot.empty())
         throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
       if (!args->noGraphics) {
@@ -105,6 +111,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       auto driver = run.device->openDriver(DriverOptions{trajectory ? &*trajectory : nullptr});
       duration = args->duration > 0.0 ? args->duration : driver->naturalDuration();
       loop = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+      sound = std::make_unique<RunSound>(RunSoundOptions{args->soundOut, !args->noSound, run.settings.rate}, std::cerr);
     } catch (const std::exception& e) {
       std::cerr << "millsim run: error: " << e.what() << "\n";
       result = kExitBadInput;
@@ -120,6 +127,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       }
     }
     FrameLogWriter writer(args->log.empty() ? nullptr : &log);
+    writer.setOnRecord([&sound](const FrameRecord& fr) { sound->add(fr); });
     const std::string deviceName =
         run.device->typeName() + (run.device->defName().empty() ? "" : " '" + run.device->defName() + "'");
     if (std::isinf(duration)) std::cout << "running " << deviceName << " until Ctrl-C\n" << std::flush;
@@ -148,10 +156,12 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       if (gInterrupted.load()) loop->stop();
       if (writer.drain(*loop) > 0) publishToDevice(*run.device, writer.last(), run.settings.rate);
+      sound->pump();
       loop->collectRetired();
     }
     loop->join();
     writer.drain(*loop);
+    sound->finish(std::cerr);
     RunGraphicsStats graphicsStats;
     std::string graphicsError;
     if (graphics) {
@@ -177,6 +187,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       if (v.node) v.node->removedVolume.set(float(v.miller.totalRemoved()));
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
+    sound->printSummary(std::cout);
     if (graphics) {
       std::cout << std::fixed << std::setprecision(1) << "  graphics: " << graphicsStats.frames << " frames at "
                 << graphicsOptions.width << "x" << graphicsOptions.height << ", mean " << graphicsStats.meanMs
@@ -188,6 +199,10 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     if (!graphicsError.empty()) {
       std::cerr << "millsim run: error: " << graphicsError << "\n";
+      result = kExitFailure;
+      return;
+    }
+    if (!sound->ok()) {
       result = kExitFailure;
       return;
     }

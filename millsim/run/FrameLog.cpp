@@ -43,6 +43,7 @@ std::size_t FrameLogWriter::drain(HapticLoop& loop) {
   return loop.records().drain([this](const FrameRecord& r) {
     last_ = r;
     ++written_;
+    if (onRecord_) onRecord_(r);
     if (!out_) return;
     row_.clear();
     appendFrameRow(row_, r);
