@@ -1,10 +1,16 @@
 // millsim replay SCENE.x3d --trajectory T.csv --log LOG.csv: steps the scene's
 // device renderer open-loop through a trajectory in simulated time.
+// --sound-out writes the milling sound in the same simulated time, so it too is
+// the same bytes on every run.
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 
 #include "Commands.h"
+#include "ImageArgs.h"
 #include "NumberArgs.h"
+#include "millsim/audio/SoundTrack.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/run/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
@@ -14,13 +20,14 @@ namespace millsim::app {
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("replay", "Replay a trajectory through the scene's haptics renderer (deterministic)");
   struct Args {
-    std::string scene, trajectory, log;
+    std::string scene, trajectory, log, soundOut;
     ReplayOptions options;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
   cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV: t,x,y,z,qw,qx,qy,qz,button")->required();
   cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame)");
+  cmd->add_option("--sound-out", args->soundOut, "WAV file of the milling sound (16-bit PCM mono, the replay's length)");
   cmd->add_option("--renderer", args->options.renderer,
                   "Use a default renderer of this type instead of the scene's (e.g. SurfacePointRenderer)");
   cmd->add_option("--rate", args->options.rate, "Haptic rate in Hz (default: the device's desiredHapticsRate)")
@@ -37,13 +44,24 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       return;
     }
     try {
+      if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       const Trajectory trajectory = Trajectory::load(args->trajectory);
       std::ofstream log;
       if (!args->log.empty()) {
         log.open(args->log, std::ios::binary);
         if (!log) throw std::runtime_error(args->log + ": cannot write the log file");
       }
-      const ReplaySummary s = replay(*r.scene, trajectory, args->log.empty() ? nullptr : &log, args->options);
+      ReplayOptions options = args->options;
+      std::unique_ptr<SoundTrack> sound;
+      if (!args->soundOut.empty()) {
+        sound = std::make_unique<SoundTrack>(args->soundOut);
+        options.onFrame = [&sound](const FrameRecord& fr) {
+          sound->add(fr);
+          if (sound->pendingSamples() >= (1u << 16)) sound->flush();
+        };
+      }
+      const ReplaySummary s = replay(*r.scene, trajectory, args->log.empty() ? nullptr : &log, options);
+      if (sound) sound->finish(double(s.frames) / s.rate);  // frames at n / rate, each one period long
       log.close();
       if (!args->log.empty() && !log) throw std::runtime_error(args->log + ": writing the log failed");
       std::cout << "replayed " << s.frames << " frames at " << s.rate << " Hz with " << s.rendererName << "\n"
@@ -51,6 +69,9 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
                 << s.contactFrames << ", most contacts " << s.maxContacts << "\n"
                 << "  removed volume " << s.removedVolume * 1e9 << " mm³, suppressed non-finite outputs "
                 << s.suppressed << "\n";
+      if (sound)
+        std::cout << "  sound: " << sound->seconds() << " s at " << sound->sampleRate() << " Hz, RMS "
+                  << 20.0 * std::log10(std::max(sound->rms(), 1e-9)) << " dBFS, written to " << args->soundOut << "\n";
       if (args->options.timing)
         std::cout << "  compute time per frame: mean " << s.meanFrameUs << " µs, p99 " << s.p99FrameUs << " µs\n";
       result = kExitOk;

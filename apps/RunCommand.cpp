@@ -24,6 +24,7 @@
 #include "RunControls.h"
 #include "RunGraphics.h"
 #include "RunHud.h"
+#include "RunSound.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/MouseDevice.h"
@@ -83,6 +84,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     std::string scene, log, renderer, trajectory, screenshot, size;
     double duration = 0.0;
     bool noGraphics = false, noWindow = false;
+    std::string soundOut;
+    bool noSound = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
@@ -98,6 +101,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
                 "WAYLAND_DISPLAY is set)");
   cmd->add_option("--screenshot", args->screenshot, "PNG of the last graphics frame (the window's, with its HUD), written at the end");
   cmd->add_option("--size", args->size, "Window or frame size WIDTHxHEIGHT (default 1024x768 in a window, else 512x512)");
+  cmd->add_option("--sound-out", args->soundOut, "WAV file of the milling sound (16-bit PCM mono, the run's length)");
+  cmd->add_flag("--no-sound", args->noSound, "Do not play the milling sound live");
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
@@ -114,7 +119,9 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     RunControls controls;
     std::unique_ptr<PointerInput> pointer;
     std::unique_ptr<RendererPool> pool;
+    std::unique_ptr<RunSound> sound;
     try {
+      if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       if (args->noGraphics && !args->screenshot.empty())
         throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
       if (!args->noGraphics) {
@@ -153,6 +160,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         if (const char* stall = std::getenv("MILLSIM_TEST_STALL_WINDOW_MS")) graphicsOptions.stallMs = std::atoi(stall);
       }
       loop = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+      sound = std::make_unique<RunSound>(RunSoundOptions{args->soundOut, !args->noSound, run.settings.rate}, std::cerr);
     } catch (const std::exception& e) {
       std::cerr << "millsim run: error: " << e.what() << "\n";
       result = kExitBadInput;
@@ -170,6 +178,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     FrameLogWriter writer(args->log.empty() ? nullptr : &log);
     HudFeed hud(run.settings.rate);
     if (pool) writer.observe([&hud](const FrameRecord& f) { hud.add(f); });
+    writer.observe([&sound](const FrameRecord& f) { sound->add(f); });
     const std::string deviceName =
         run.device->typeName() + (run.device->defName().empty() ? "" : " '" + run.device->defName() + "'");
     if (std::isinf(duration))
@@ -205,6 +214,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       if (gInterrupted.load() || controls.closed()) loop->stop();
       if (writer.drain(*loop) > 0) publishToDevice(*run.device, writer.last(), run.settings.rate);
+      sound->pump();
       if (!pool) {
         loop->collectRetired();
         continue;
@@ -219,6 +229,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     loop->join();
     writer.drain(*loop);
+    sound->finish(std::cerr);
     RunGraphicsStats graphicsStats;
     std::string graphicsError;
     if (graphics) {
@@ -244,6 +255,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       if (v.node) v.node->removedVolume.set(float(v.miller.totalRemoved()));
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
+    sound->printSummary(std::cout);
     if (graphics) {
       std::cout << std::fixed << std::setprecision(1) << (graphicsStats.window ? "  window: " : "  graphics: ")
                 << graphicsStats.frames << " frames at "
@@ -257,6 +269,10 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     if (!graphicsError.empty()) {
       std::cerr << "millsim run: error: " << graphicsError << "\n";
+      result = kExitFailure;
+      return;
+    }
+    if (!sound->ok()) {
       result = kExitFailure;
       return;
     }

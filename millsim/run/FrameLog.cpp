@@ -45,7 +45,7 @@ std::size_t FrameLogWriter::drain(HapticLoop& loop) {
   return loop.records().drain([this](const FrameRecord& r) {
     last_ = r;
     ++written_;
-    if (observer_) observer_(r);
+    for (const auto& observer : observers_) observer(r);
     if (!out_) return;
     row_.clear();
     appendFrameRow(row_, r);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "millsim/run/HapticLoop.h"
 
@@ -18,8 +19,9 @@ void appendFrameRow(std::string& out, const FrameRecord& r);
 class FrameLogWriter {
 public:
   explicit FrameLogWriter(std::ostream* out);
-  // Also hands every record to `observer` (the window's HUD statistics).
-  void observe(std::function<void(const FrameRecord&)> observer) { observer_ = std::move(observer); }
+  // Also hands every drained record, in order, to `observer` (the window's
+  // HUD statistics, the milling sound); observers add up.
+  void observe(std::function<void(const FrameRecord&)> observer) { observers_.push_back(std::move(observer)); }
   // Writes every record the loop has published so far; returns how many.
   std::size_t drain(HapticLoop& loop);
   const FrameRecord& last() const { return last_; }
@@ -27,7 +29,7 @@ public:
 
 private:
   std::ostream* out_;
-  std::function<void(const FrameRecord&)> observer_;
+  std::vector<std::function<void(const FrameRecord&)>> observers_;
   std::string row_;
   FrameRecord last_;
   long written_ = 0;

@@ -32,6 +32,7 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
 
   HapticLoop loop(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
   FrameLogWriter writer(log);
+  if (options.onFrame) writer.observe(options.onFrame);
   for (long n = 0; n < frames; ++n) {
     loop.stepSimulated();
     writer.drain(loop);

@@ -6,6 +6,7 @@
 // is replaced by the trajectory. The same scene, trajectory and options give
 // the same bytes on every run (compute time is only logged on request,
 // because wall-clock time is the one thing that cannot repeat).
+#include <functional>
 #include <limits>
 #include <memory>
 #include <ostream>
@@ -18,11 +19,14 @@
 
 namespace millsim {
 
+struct FrameRecord;
+
 struct ReplayOptions {
   double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
   std::string renderer;          // replace the scene's renderer with a default one of this type
   bool timing = false;           // fill frame_us with measured compute time
   double until = std::numeric_limits<double>::infinity();  // stop after this trajectory time (s)
+  std::function<void(const FrameRecord&)> onFrame;         // called with every frame, in order (the milling sound)
 };
 
 struct ReplaySummary {
