@@ -29,6 +29,7 @@
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/MouseDevice.h"
 #include "millsim/run/FrameLog.h"
+#include "millsim/run/LiveUpdates.h"
 #include "millsim/run/RendererPool.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/std/WorldInfo.h"
@@ -210,18 +211,25 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     // The scene thread's part: drain the log, update the device fields, and
     // with a window, feed its HUD and do what its keys asked.
     std::string status;
+    LiveUpdates live(run, *loop);
     while (!loop->finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       if (gInterrupted.load() || controls.closed()) loop->stop();
       if (writer.drain(*loop) > 0) publishToDevice(*run.device, writer.last(), run.settings.rate);
       sound->pump();
+      for (const WindowCommand& c : controls.take()) {
+        if (c.kind == WindowCommand::Kind::SelectRenderer && pool) status = pool->select(std::size_t(c.index), *loop);
+        // The keys set fields; LiveUpdates carries them to the haptic thread, as for a route.
+        if (c.kind == WindowCommand::Kind::ToggleEnabled) run.device->enabled.set(!run.device->enabled.get());
+        if (c.kind == WindowCommand::Kind::ToggleMillable)
+          for (VolumeObject* v : r.scene->nodesOfType<VolumeObject>()) v->millable.set(!v->millable.get());
+      }
+      if (std::string s = live.poll(); !s.empty()) status = s;
       if (!pool) {
         loop->collectRetired();
         continue;
       }
       pool->collect(*loop);
-      for (const WindowCommand& c : controls.take())
-        if (c.kind == WindowCommand::Kind::SelectRenderer) status = pool->select(std::size_t(c.index), *loop);
       if (std::string s = pool->followDeviceField(*loop); !s.empty()) status = s;
       HudState h = hud.state(status);
       h.fading = std::string(h.renderer) != pool->typeName(pool->current());

@@ -38,18 +38,18 @@ public:
                          "Compute time of the last haptic frame (s)."};
   SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
                              "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
-  SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N).",
+  SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N); live: a change applies from the next frame.",
                      Range::openClosed(0, 50)};
-  SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m).",
+  SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m); live.",
                       Range::openClosed(0, 5)};
   SFVec3f positionCalibration{this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
                               "Offset added to the raw device position (m).", Range::closed(-10, 10)};
   SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
                                     "Rotation applied to raw device poses (about the world origin)."};
-  SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent."};
+  SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent; live."};
   SFNodeOf<MillTool> tool{this, "tool", Access::InputOutput, "The milling tool the device holds."};
   SFNodeOf<HapticsRendererNode> hapticsRenderer{this, "hapticsRenderer", Access::InputOutput,
-                                                "The algorithm that computes force and torque."};
+                                                "The algorithm that computes force and torque; live in the window of millsim run (keys 1-3, or a new node of a prepared type)."};
 
   // Raw device pose → calibrated world pose.
   Pose calibrate(const Pose& raw) const;

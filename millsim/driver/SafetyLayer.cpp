@@ -40,6 +40,11 @@ SafetyLayer::SafetyLayer(const SafetyLimits& limits) : limits_(limits) {
   requirePositive(limits.watchdogTimeout, "watchdogTimeout", false);
 }
 
+void SafetyLayer::setLimits(double forceLimit, double torqueLimit) {
+  if (std::isfinite(forceLimit) && forceLimit > 0.0) limits_.forceLimit = forceLimit;
+  if (std::isfinite(torqueLimit) && torqueLimit > 0.0) limits_.torqueLimit = torqueLimit;
+}
+
 SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque, double t, double sampleTime) {
   SafeWrench out;
   // A non-finite clock is a late frame that must not become the reference for

@@ -52,6 +52,9 @@ public:
 
   const SafetyLimits& limits() const { return limits_; }
   const SafetyCounters& counters() const { return counters_; }
+  // New force and torque limits from the next frame on (a live field change).
+  // Values that are not finite and positive are ignored: the old limits stay.
+  void setLimits(double forceLimit, double torqueLimit);
 
 private:
   SafetyLimits limits_;

@@ -86,6 +86,10 @@ HapticLoop::HapticLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algor
       }()),
       records_(settings.logCapacity) {
   if (!driver_) throw std::invalid_argument("HapticLoop needs a device driver");
+  enabled_ = settings.enabled;
+  liveEnabled_.store(settings.enabled);
+  liveForceLimit_.store(settings.limits.forceLimit);
+  liveTorqueLimit_.store(settings.limits.torqueLimit);
   names_.push_back(switch_.current().name());
   currentName_ = names_.back().c_str();
 }
@@ -125,8 +129,20 @@ std::unique_ptr<HapticAlgorithm> HapticLoop::takeRetired() {
   return std::unique_ptr<HapticAlgorithm>(retired_.exchange(nullptr, std::memory_order_acq_rel));
 }
 
+void HapticLoop::setLive(bool enabled, double forceLimit, double torqueLimit) {
+  liveEnabled_.store(enabled, std::memory_order_relaxed);
+  liveForceLimit_.store(forceLimit, std::memory_order_relaxed);
+  liveTorqueLimit_.store(torqueLimit, std::memory_order_relaxed);
+  liveVersion_.fetch_add(1, std::memory_order_release);
+}
+
 void HapticLoop::frame(double t, double dt, double periodUs) {
   const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
+  if (const std::uint32_t v = liveVersion_.load(std::memory_order_acquire); v != liveSeen_) {
+    liveSeen_ = v;
+    enabled_ = liveEnabled_.load(std::memory_order_relaxed);
+    safety_.setLimits(liveForceLimit_.load(std::memory_order_relaxed), liveTorqueLimit_.load(std::memory_order_relaxed));
+  }
   const DeviceReading reading = driver_->read(t, dt);
   // A missing or corrupt sample keeps the last good pose; the watchdog sees its age.
   if (reading.valid && finitePose(reading.pose)) {
@@ -162,7 +178,7 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
   }
 
   SafeWrench w;
-  if (settings_.enabled && haveReading_) {
+  if (enabled_ && haveReading_) {
     w = safety_.filter(out.force, out.torque, t, sampleTime_);
   } else if (!haveReading_) {
     w.events = kSafetyWatchdog;  // nothing from the device yet: send nothing

@@ -122,6 +122,10 @@ public:
   // untouched, if the previous swap is still pending.
   bool replaceRenderer(std::unique_ptr<HapticAlgorithm>& next);
   bool replaceRenderer(std::unique_ptr<HapticAlgorithm>&& next) { return replaceRenderer(next); }
+  // Any thread but the haptic one: the device node's live fields (enabled,
+  // forceLimit, torqueLimit), applied from the next frame on. Wait-free.
+  void setLive(bool enabled, double forceLimit, double torqueLimit);
+
   // Scene thread: an algorithm the haptic thread has retired (or null), to be
   // kept for a later swap back or freed off the haptic thread.
   std::unique_ptr<HapticAlgorithm> takeRetired();
@@ -166,6 +170,13 @@ private:
   std::deque<std::string> names_;
   std::atomic<const char*> incomingName_{nullptr};
   const char* currentName_ = "";
+
+  // Live fields (setLive): written by the scene thread, read at each frame.
+  std::atomic<bool> liveEnabled_{true};
+  std::atomic<double> liveForceLimit_{0.0}, liveTorqueLimit_{0.0};
+  std::atomic<std::uint32_t> liveVersion_{0};
+  std::uint32_t liveSeen_ = 0;
+  bool enabled_ = true;  // the haptic thread's copy
 
   std::thread thread_;
   std::atomic<bool> stopRequested_{false};

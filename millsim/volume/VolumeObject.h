@@ -29,7 +29,7 @@ public:
                    "Density of air; values at or below it are stored as the sparse background.", Range::closed(-1e9, 1e9)};
   SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
                     "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::closed(0, 1)};
-  SFBool millable{this, "millable", Access::InputOutput, true, "Whether the burr removes material."};
+  SFBool millable{this, "millable", Access::InputOutput, true, "Whether the burr removes material; live: a change applies from the next frame."};
   SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed so far (m³)."};
   SFString loadedUrl{this, "loadedUrl", Access::OutputOnly, "", "The url that was loaded."};
 

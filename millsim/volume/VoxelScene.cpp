@@ -92,7 +92,7 @@ const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
 double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
   double removed = 0.0;
   for (auto& v : volumes_) {
-    if (!v->millable) continue;
+    if (!v->millable.load(std::memory_order_relaxed)) continue;
     const glm::dvec3 local = glm::dvec3(v->placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
     // Clearing first keeps `changed` to this call's blocks (O(blocks), no allocation).
     v->changed.clear();

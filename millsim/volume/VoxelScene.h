@@ -4,6 +4,7 @@
 // scene thread from the Scene's VolumeObjects (placedVolumes(), the same walk
 // graphics uses, so volume i is the same volume on both sides), then owned and
 // used by one haptic thread: it holds that thread's OpenVDB accessors.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -25,7 +26,9 @@ class VoxelScene final : public HapticScene {
 public:
   struct Volume {
     VolumeObject* node;  // may be null for volumes added directly (tests, tools)
-    bool millable;
+    // VolumeObject.millable, live: the scene thread may switch it while the
+    // haptic thread mills (LiveUpdates).
+    std::atomic<bool> millable;
     VoxelVolume* voxels;
     Placement placement;
     glm::dmat3 worldToIndexLinear;  // the linear part of world → index

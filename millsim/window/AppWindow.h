@@ -53,7 +53,7 @@ struct HudState {
 
 // Something the window asks the scene thread to do.
 struct WindowCommand {
-  enum class Kind { SelectRenderer, ToggleEnabled } kind;
+  enum class Kind { SelectRenderer, ToggleEnabled, ToggleMillable } kind;
   int index = 0;  // SelectRenderer: 0 for key 1, …
 };
 

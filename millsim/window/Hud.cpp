@@ -31,7 +31,8 @@ void drawHelpLine(const HudExtras& extras) {
   for (std::size_t i = 0; i < extras.renderers.size(); ++i)
     keys += std::to_string(i + 1) + " " + extras.renderers[i] + "   ";
   std::string help = keys + "|  drag turn · wheel zoom · shift/middle-drag pan · PgUp/PgDn viewpoint · F frame all · "
-                            "C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move cut · H HUD · Esc quit";
+                            "C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move cut · E force on/off · "
+                            "M millable on/off · H HUD · Esc quit";
   if (extras.pointer)
     help += "  |  mouse tool: move = burr · left/Space = mill · right-drag turn tool · Ctrl+wheel depth · "
             "Alt/middle-drag turn view";

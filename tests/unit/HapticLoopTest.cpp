@@ -345,3 +345,24 @@ TEST(HapticLoop, MillsInRealTimeWhileGraphicsAndSceneThreadsRead) {
   EXPECT_GT(framesSeen, 0);
   EXPECT_EQ(replica.volume().contentHash(), volume.contentHash()) << "the graphics copy missed a milled block";
 }
+
+// The device's live fields reach the haptic thread at the next frame: a new
+// force limit clamps, `enabled` false sends nothing, and back again.
+TEST(HapticLoop, LiveLimitsAndEnabledApplyFromTheNextFrame) {
+  VoxelScene scene;
+  FakeDevice::Shared dev;
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(2.0, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  settings());
+  loop.stepSimulated();
+  loop.setLive(true, 0.5, 0.1);
+  loop.stepSimulated();
+  loop.setLive(false, 0.5, 0.1);
+  loop.stepSimulated();
+  loop.setLive(true, 1e-300 * 0.0, 0.1);  // not positive: the old limit stays
+  loop.stepSimulated();
+  ASSERT_EQ(dev.forces.size(), 4u);
+  EXPECT_NEAR(dev.forces[0].x, 2.0, 1e-12);
+  EXPECT_NEAR(dev.forces[1].x, 0.5, 1e-12) << "clamped to the new limit";
+  EXPECT_EQ(dev.forces[2].x, 0.0) << "disabled";
+  EXPECT_NEAR(dev.forces[3].x, 0.5, 1e-12) << "enabled again; a zero limit is refused";
+}

@@ -12,7 +12,11 @@
 #include "measure/Renderers.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/LiveUpdates.h"
 #include "millsim/run/Replay.h"
+#include "millsim/run/RunSetup.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/volume/VoxelScene.h"
 #include "millsim/x3d/X3DLoader.h"
 
 using namespace millsim;
@@ -197,4 +201,37 @@ TEST(Replay, BarbicMillsTheHoleAtItsDefaultShellScale) {
   const ReplaySummary s =
       replay(*r.scene, Trajectory::load(MILLSIM_SOURCE_DIR "/x3d/trajectories/section-8-2.csv"), nullptr, options);
   EXPECT_GT(s.removedVolume * 1e9, 2.0) << "mm³ removed by 10 s (the other renderers remove 2.4-2.6)";
+}
+
+// The scene graph is live while running: setting the device's forceLimit and
+// a VolumeObject's millable field reaches the haptic frames through
+// LiveUpdates, as a window key or a route would.
+TEST(LiveUpdates, FieldsSetWhileRunningReachTheNextFrames) {
+  LoadResult r = loadSceneFile(std::string(MILLSIM_SOURCE_DIR) + "/tests/data/window/press.x3d", builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  CompiledRun run = compileRun(*r.scene);
+  auto driver = run.device->openDriver({});
+  HapticLoop loop(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+  LiveUpdates live(run, loop);
+  std::vector<FrameRecord> frames;
+  auto stepTo = [&](long n) {
+    while (loop.stats().frames < n) loop.stepSimulated();
+    loop.records().drain([&](const FrameRecord& f) { frames.push_back(f); });
+  };
+  stepTo(1500);  // pressed into the tooth by now
+  EXPECT_GT(glm::length(frames.back().force), 1.0);
+  EXPECT_TRUE(live.poll().empty()) << "nothing changed yet";
+  run.device->forceLimit.set(0.25f);
+  EXPECT_NE(live.poll().find("forceLimit 0.25"), std::string::npos);
+  stepTo(1600);
+  EXPECT_LE(glm::length(frames.back().force), 0.25 + 1e-9) << "the new limit clamps";
+  // Milling: the press holds the button off, so the miller's switch is the field alone.
+  auto* tooth = r.scene->nodesOfType<VolumeObject>().front();
+  tooth->millable.set(false);
+  EXPECT_NE(live.poll().find("not millable"), std::string::npos);
+  EXPECT_FALSE(run.scene->volume(0).millable.load());
+  run.device->enabled.set(false);
+  live.poll();
+  stepTo(1700);
+  EXPECT_EQ(glm::length(frames.back().force), 0.0) << "disabled: nothing sent";
 }
