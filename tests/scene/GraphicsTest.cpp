@@ -7,7 +7,9 @@
 #include "../unit/TestFiles.h"
 #include "ImageCompare.h"
 #include "millsim/core/NodeRegistry.h"
+#include "millsim/graphics/Examine.h"
 #include "millsim/graphics/GlContext.h"
+#include "millsim/graphics/PointerTool.h"
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/SceneRenderer.h"
 #include "millsim/volume/VoxelScene.h"
@@ -216,4 +218,47 @@ TEST(SceneView, ViewpointsAreListedByDescriptionOrDefName) {
   EXPECT_TRUE(view.viewpoints[1].hasCenterOfRotation);
   EXPECT_NEAR(view.viewpoints[1].centerOfRotation.y, 0.011, 1e-9);
   EXPECT_FALSE(view.framed);
+}
+
+// EXAMINE navigation: the camera orbits and dollies about a centre and pans with it.
+TEST(ExamineNavigator, TurnsZoomsAndPansAboutTheCentre) {
+  ViewSpec start;
+  start.position = glm::dvec3(0.0, 0.0, 0.06);
+  ExamineNavigator nav;
+  nav.reset(start, glm::dvec3(0.0, 0.001, 0.0));
+  EXPECT_NEAR(nav.distance(), 0.06, 1e-12);
+  EXPECT_NEAR(nav.centre().y, 0.0, 1e-12) << "the centre is put on the line of sight: no jump";
+  nav.rotate(100.0, 0.0, 200);  // half the height: a quarter turn about +Y
+  const ViewSpec turned = nav.view();
+  EXPECT_NEAR(glm::length(turned.position - nav.centre()), 0.06, 1e-9);
+  EXPECT_NEAR(turned.position.x, -0.06, 1e-9) << "dragging right brings the scene's right side to the front";
+  EXPECT_NEAR(glm::dot(glm::mat3_cast(turned.orientation) * glm::dvec3(0, 1, 0), glm::dvec3(0, 1, 0)), 1.0, 1e-9)
+      << "a horizontal drag keeps the horizon level";
+  nav.zoom(1.0);
+  EXPECT_NEAR(nav.distance(), 0.054, 1e-9);
+  const glm::dvec3 before = nav.centre();
+  nav.pan(0.0, 50.0, 200);  // dragging down moves the scene down: the camera goes up
+  EXPECT_GT(nav.centre().y, before.y);
+  EXPECT_NEAR(glm::length(nav.view().position - nav.centre()), 0.054, 1e-9);
+}
+
+// The mouse as a device: the burr goes under the cursor at its own depth.
+TEST(PointerTool, BurrFollowsTheCursorOnItsPlaneAndPushesInDepth) {
+  ViewSpec v;
+  v.position = glm::dvec3(0.0, 0.0, 0.06);
+  const Camera cam = makeCamera(v, 400, 300, 0.01, 1.0);
+  Pose start;
+  start.position = glm::dvec3(0.002, 0.003, 0.0);
+  PointerTool tool(start, 1e-3);
+  const glm::dvec3 px = cam.project(start.position);
+  tool.follow(cam, px.x, px.y);
+  EXPECT_NEAR(glm::length(tool.pose().position - start.position), 0.0, 1e-9) << "no motion, no change";
+  tool.follow(cam, 200.0, 150.0);  // the image centre
+  EXPECT_NEAR(tool.pose().position.x, 0.0, 1e-9);
+  EXPECT_NEAR(tool.pose().position.y, 0.0, 1e-9);
+  EXPECT_NEAR(tool.pose().position.z, 0.0, 1e-9) << "the burr stays on the plane through it facing the camera";
+  tool.push(cam, 2.0);
+  EXPECT_NEAR(tool.pose().position.z, -0.002, 1e-9) << "two notches away from the viewer";
+  tool.turn(cam, 0.0, 150.0);  // half the height: a quarter turn about the screen's right axis
+  EXPECT_NEAR(std::abs(tool.pose().shaftDirection().z), 1.0, 1e-9);
 }
