@@ -55,6 +55,12 @@ public:
   virtual void reset(const Pose& device) = 0;
   virtual HapticOutput step(HapticScene& scene, const HapticInput& in) = 0;
   virtual std::string name() const = 0;
+  // Called after reset() when this algorithm takes over from `previous` in a
+  // live swap: an algorithm of the same kind (a field was changed and the
+  // renderer compiled again) takes over its contact history — a proxy inside
+  // the tooth, the held forces of a burr centre past the surface — so the
+  // hand feels the new parameters, not a release. Default: nothing carried.
+  virtual void carryOver(const HapticAlgorithm& previous) { (void)previous; }
 };
 
 class HapticsRendererNode : public Node {

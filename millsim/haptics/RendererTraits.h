@@ -40,6 +40,13 @@ struct RendererTraits {
   // coupled tool body): it must never tunnel through a thin plate. False for
   // penalty methods, whose fall-through is measured, not forbidden.
   bool constrainsTool = false;
+
+  // True if compile() reads nothing of the HapticScene (it builds no point
+  // shell, samples no voxel): a running loop's scene thread may then compile
+  // it again while the haptic thread mills, so a change to its fields is live
+  // (RendererPool). False: a change takes effect at the next run. The
+  // renderer contract test compiles it against a scene that fails on any read.
+  bool compilesWithoutScene = false;
 };
 
 }  // namespace millsim

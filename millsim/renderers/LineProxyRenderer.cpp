@@ -51,6 +51,20 @@ public:
     lastDrawn_ = device;
   }
 
+  void carryOver(const HapticAlgorithm& previous) override {
+    const auto* p = dynamic_cast<const LineProxyAlgorithm*>(&previous);
+    if (!p) return;
+    // The proxies stay where they were held; only the parameters change.
+    tip_.takeStateFrom(p->tip_);
+    shaft_.takeStateFrom(p->shaft_);
+    prevTip_ = p->prevTip_;
+    cutting_ = p->cutting_;
+    cutCentre_ = p->cutCentre_;
+    prevDir_ = p->prevDir_;
+    shaftContact_ = p->shaftContact_;
+    lastDrawn_ = p->lastDrawn_;
+  }
+
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
     HapticOutput out;
     const Pose& device = in.device;
@@ -254,6 +268,7 @@ RendererTraits LineProxyRenderer::traits() const {
   t.resolutionSweeps = {{"vertexCount", {"6", "11", "26", "51", "101", "251"}}};
   t.reference = ReferenceKind::Proxy;
   t.constrainsTool = true;
+  t.compilesWithoutScene = true;
   return t;
 }
 

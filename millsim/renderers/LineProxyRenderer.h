@@ -15,18 +15,18 @@ public:
   const NodeType& nodeType() const override { return type(); }
   RendererTraits traits() const override;
 
-  SFInt32 vertexCount{this, "vertexCount", Access::InitializeOnly, 51,
+  SFInt32 vertexCount{this, "vertexCount", Access::InputOutput, 51,
                       "Vertices on the centreline, the burr centre included (paper: 51).", Range::closed(2, 1000)};
-  SFInt32 translationSteps{this, "translationSteps", Access::InitializeOnly, 10,
+  SFInt32 translationSteps{this, "translationSteps", Access::InputOutput, 10,
                            "NUMBER_OF_TRANSLATION_STEPS of the first-contact search (eq. 3).", Range::closed(1, 100)};
-  SFInt32 rotationSteps{this, "rotationSteps", Access::InitializeOnly, 10,
+  SFInt32 rotationSteps{this, "rotationSteps", Access::InputOutput, 10,
                         "NUMBER_OF_ROTATION_STEPS of the first-contact search (eq. 4).", Range::closed(1, 100)};
-  SFFloat springConstant{this, "springConstant", Access::InitializeOnly, 2000.f,
+  SFFloat springConstant{this, "springConstant", Access::InputOutput, 2000.f,
                          "k_spring of eq. 6 and eq. 10 (N/m).", Range::openClosed(0, 1e6)};
-  SFInt32 proxyIterations{this, "proxyIterations", Access::InitializeOnly, 6,
+  SFInt32 proxyIterations{this, "proxyIterations", Access::InputOutput, 6,
                           "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::closed(1, 100)};
 
-  SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
+  SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr advances into material at force / feedResistance (N·s/m).",
                          Range::openClosed(0, 1e6)};
 

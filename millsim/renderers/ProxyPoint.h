@@ -40,6 +40,11 @@ public:
   }
   // Moves the proxy for a new probe position; returns the new proxy.
   const glm::dvec3& update(const HapticScene& scene, const glm::dvec3& probe);
+  // Where `other` is and whether it touches, keeping this one's parameters (a live retune).
+  void takeStateFrom(const ProxyPoint& other) {
+    proxy_ = other.proxy_;
+    inContact_ = other.inContact_;
+  }
   const glm::dvec3& position() const { return proxy_; }
   bool inContact() const { return inContact_; }
 

@@ -42,6 +42,16 @@ public:
     std::fill(heldSlice_.begin(), heldSlice_.end(), glm::dvec3(0.0));
   }
 
+  void carryOver(const HapticAlgorithm& previous) override {
+    const auto* p = dynamic_cast<const SurfacePointAlgorithm*>(&previous);
+    if (!p || p->heldSlice_.size() != heldSlice_.size() || !(p->k_ > 0.0)) return;
+    // The held forces are k · (penetration at entry): the same entry, the new k.
+    const double scale = k_ / p->k_;
+    lastDrawn_ = p->lastDrawn_;
+    heldSphere_ = p->heldSphere_ * scale;
+    for (std::size_t j = 0; j < heldSlice_.size(); ++j) heldSlice_[j] = p->heldSlice_[j] * scale;
+  }
+
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
     HapticOutput out;
     const Pose& device = in.device;
@@ -152,6 +162,7 @@ RendererTraits SurfacePointRenderer::traits() const {
                         {"slices", {"5", "10", "20", "50", "100"}}};
   t.reference = ReferenceKind::Penalty;
   t.constrainsTool = false;
+  t.compilesWithoutScene = true;
   return t;
 }
 

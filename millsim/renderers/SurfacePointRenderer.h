@@ -15,15 +15,15 @@ public:
   const NodeType& nodeType() const override { return type(); }
   RendererTraits traits() const override;
 
-  SFInt32 sphereVertices{this, "sphereVertices", Access::InitializeOnly, 24,
+  SFInt32 sphereVertices{this, "sphereVertices", Access::InputOutput, 24,
                          "Vertices on the burr sphere (paper: 24), spread evenly (Fibonacci lattice).",
                          Range::closed(4, 1000)};
-  SFInt32 slices{this, "slices", Access::InitializeOnly, 20, "Slices along the shaft (paper: 20).", Range::closed(1, 200)};
-  SFInt32 verticesPerSlice{this, "verticesPerSlice", Access::InitializeOnly, 8,
+  SFInt32 slices{this, "slices", Access::InputOutput, 20, "Slices along the shaft (paper: 20).", Range::closed(1, 200)};
+  SFInt32 verticesPerSlice{this, "verticesPerSlice", Access::InputOutput, 8,
                            "Vertices on each slice's circle (paper: 8).", Range::closed(3, 64)};
   // Eq. 14 divides by the vertex count, so the felt stiffness is k times the
   // colliding fraction: k must be much higher than Algorithm #1's.
-  SFFloat springConstant{this, "springConstant", Access::InitializeOnly, 20000.f,
+  SFFloat springConstant{this, "springConstant", Access::InputOutput, 20000.f,
                          "k_spring of eq. 14 (N/m); the felt stiffness is about k times the colliding fraction.",
                          Range::openClosed(0, 1e6)};
 

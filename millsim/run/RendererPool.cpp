@@ -14,6 +14,12 @@ namespace millsim {
 namespace {
 // The keys 1, 2, 3 of the window, in the paper's order (#1, #2, #3).
 const char* const kKeyed[] = {"LineProxyRenderer", "SurfacePointRenderer", "BarbicRenderer"};
+
+std::string fieldValues(const Node& node) {
+  std::string out;
+  for (const Field* f : node.fields()) out += std::string(f->name()) + "=" + f->toString() + "\n";
+  return out;
+}
 }  // namespace
 
 RendererPool::RendererPool(Scene& scene, CompiledRun& run, const HapticAlgorithm* initial) : run_(run) {
@@ -46,6 +52,7 @@ RendererPool::RendererPool(Scene& scene, CompiledRun& run, const HapticAlgorithm
       }
       s.identity = s.algorithm.get();
     }
+    s.fields = fieldValues(*s.node);
     slots_.push_back(std::move(s));
   }
   fieldSeen_ = own.get();
@@ -81,6 +88,40 @@ void RendererPool::collect(HapticLoop& loop) {
     if (it != slots_.end() && !it->algorithm) it->algorithm = std::move(back);
     // An algorithm the pool does not know is freed here, on the scene thread.
   }
+}
+
+std::string RendererPool::followRendererFields(HapticLoop& loop) {
+  std::string notice;
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    Slot& s = slots_[i];
+    const std::string now = fieldValues(*s.node);
+    if (now == s.fields) continue;
+    const auto& node = dynamic_cast<const HapticsRendererNode&>(*s.node);
+    if (!node.traits().compilesWithoutScene) {
+      s.fields = now;
+      notice = s.type + ": a field changed; it takes effect at the next run (its compile reads the scene)";
+      continue;
+    }
+    std::unique_ptr<HapticAlgorithm> fresh;
+    try {
+      fresh = node.compile(run_.tool, *run_.scene);
+    } catch (const std::exception& e) {
+      s.fields = now;
+      notice = s.type + ": cannot apply the changed fields: " + e.what();
+      continue;
+    }
+    if (i == current_) {
+      const HapticAlgorithm* identity = fresh.get();
+      if (!loop.replaceRenderer(fresh)) continue;  // a swap is pending: try at the next tick
+      s.identity = identity;  // the old one, when it retires, is freed by collect()
+    } else {
+      s.identity = fresh.get();
+      s.algorithm = std::move(fresh);
+    }
+    s.fields = now;
+    notice = s.type + ": changed fields applied live";
+  }
+  return notice;
 }
 
 std::string RendererPool::followDeviceField(HapticLoop& loop) {

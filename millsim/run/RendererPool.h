@@ -42,6 +42,11 @@ public:
   std::string select(std::size_t slot, HapticLoop& loop);
   // Takes algorithms the loop retired back into their slots.
   void collect(HapticLoop& loop);
+  // A prepared renderer node's fields changed (a route, a plugin): a renderer
+  // whose traits say compilesWithoutScene is compiled again here and swapped
+  // in (cross-faded) if it is rendering; for others the change waits for the
+  // next run. Returns what to tell the user (empty: nothing changed).
+  std::string followRendererFields(HapticLoop& loop);
   // The device's hapticsRenderer field was set (by a route or a plugin): swap
   // to that node's slot. Returns what to tell the user (empty: nothing changed).
   std::string followDeviceField(HapticLoop& loop);
@@ -52,6 +57,7 @@ private:
     std::shared_ptr<Node> node;                  // the renderer node (the device's, or a default one)
     std::unique_ptr<HapticAlgorithm> algorithm;  // null while the loop has it
     const HapticAlgorithm* identity = nullptr;   // recognises it when it comes back
+    std::string fields;                          // the node's field values when last compiled
   };
   CompiledRun& run_;
   std::vector<Slot> slots_;

@@ -6,6 +6,7 @@ namespace millsim {
 
 void RendererSwitch::replace(std::unique_ptr<HapticAlgorithm> next, const Pose& device) {
   next->reset(device);
+  next->carryOver(*current_);
   // A switch during a fade drops the oldest; the blend restarts from the one in charge.
   retired_ = std::move(previous_);
   previous_ = std::move(current_);

@@ -228,6 +228,33 @@ TEST_P(EveryRenderer, DegeneratePosesNeverGiveNonFiniteOutput) {
   }
 }
 
+// A renderer that says it compiles without the scene (so its fields are live,
+// RendererPool) must really read nothing of it: compile it against a scene
+// whose every read fails the test.
+TEST_P(EveryRenderer, CompilesWithoutTheSceneWhenItSaysSo) {
+  struct Untouchable final : HapticScene {
+    mutable int reads = 0;
+    std::size_t volumeCount() const override { return ++reads, 1; }
+    const Placement& placement(std::size_t) const override {
+      ++reads;
+      static const Placement p{};
+      return p;
+    }
+    double field(const glm::dvec3&) const override { return ++reads, 1.0; }
+    glm::dvec3 gradient(const glm::dvec3&) const override { return ++reads, glm::dvec3(0, 1, 0); }
+    double voxelSize() const override { return ++reads, 1e-4; }
+    const PointShell& pointShell(std::size_t, int) override {
+      ++reads;
+      throw std::logic_error("pointShell read");
+    }
+  };
+  const auto node = renderer();
+  if (!node->traits().compilesWithoutScene) GTEST_SKIP() << GetParam() << " compiles against the scene (not live)";
+  Untouchable scene;
+  EXPECT_NO_THROW(node->compile(kTool, scene));
+  EXPECT_EQ(scene.reads, 0) << GetParam() << " says compilesWithoutScene but read the scene";
+}
+
 INSTANTIATE_TEST_SUITE_P(Algorithms, EveryRenderer, ::testing::ValuesIn(measure::registeredRenderers()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 

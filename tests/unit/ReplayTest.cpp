@@ -13,6 +13,8 @@
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/run/LiveUpdates.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/run/RendererPool.h"
 #include "millsim/run/Replay.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/volume/VolumeObject.h"
@@ -234,4 +236,44 @@ TEST(LiveUpdates, FieldsSetWhileRunningReachTheNextFrames) {
   live.poll();
   stepTo(1700);
   EXPECT_EQ(glm::length(frames.back().force), 0.0) << "disabled: nothing sent";
+}
+
+// Keys 1-3 and renderer fields while running: the pool swaps to a prepared
+// renderer, and a changed springConstant of the rendering SurfacePointRenderer
+// is compiled again and cross-faded in (its compile reads no scene).
+TEST(RendererPool, SwapsAndAppliesChangedRendererFieldsLive) {
+  LoadResult r = loadSceneFile(std::string(MILLSIM_SOURCE_DIR) + "/tests/data/window/press.x3d", builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  CompiledRun run = compileRun(*r.scene);
+  auto driver = run.device->openDriver({});
+  const HapticAlgorithm* initial = run.algorithm.get();
+  RendererPool pool(*r.scene, run, initial);
+  ASSERT_GE(pool.size(), 3u);
+  EXPECT_EQ(pool.typeName(pool.current()), "SurfacePointRenderer");
+  HapticLoop loop(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+  std::vector<FrameRecord> frames;
+  auto stepTo = [&](long n) {
+    while (loop.stats().frames < n) loop.stepSimulated();
+    loop.records().drain([&](const FrameRecord& f) { frames.push_back(f); });
+    pool.collect(loop);
+  };
+  stepTo(1500);
+  const double pressed = glm::length(frames.back().force);
+  ASSERT_GT(pressed, 1.0);
+  auto* node = dynamic_cast<SurfacePointRenderer*>(run.device->hapticsRenderer.get().get());
+  ASSERT_NE(node, nullptr);
+  node->springConstant.set(node->springConstant.get() / 2);
+  EXPECT_NE(pool.followRendererFields(loop).find("applied live"), std::string::npos);
+  stepTo(1700);  // past the 100 ms cross-fade
+  EXPECT_NEAR(glm::length(frames.back().force) / pressed, 0.5, 0.05) << "half the spring, half the force";
+  EXPECT_TRUE(pool.followRendererFields(loop).empty()) << "nothing more changed";
+  // Key 3: BarbicRenderer takes over; the device's field follows.
+  EXPECT_EQ(pool.select(2, loop), "switched to BarbicRenderer");
+  stepTo(1800);
+  EXPECT_STREQ(frames.back().renderer, "BarbicRenderer");
+  EXPECT_EQ(run.device->hapticsRenderer.get()->typeName(), "BarbicRenderer");
+  // Key 2 again: the SurfacePointRenderer that retired comes back from its slot.
+  EXPECT_EQ(pool.select(1, loop), "switched to SurfacePointRenderer");
+  stepTo(2000);
+  EXPECT_STREQ(frames.back().renderer, "SurfacePointRenderer");
 }
