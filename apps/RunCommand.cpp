@@ -233,7 +233,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       if (std::string s = pool->followDeviceField(*loop); !s.empty()) status = s;
       if (std::string s = pool->followRendererFields(*loop); !s.empty()) status = s;
       HudState h = hud.state(status);
-      h.fading = std::string(h.renderer) != pool->typeName(pool->current());
+      h.swapPending = std::string(h.renderer) != pool->typeName(pool->current());
       controls.setHud(h);
     }
     loop->join();

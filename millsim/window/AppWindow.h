@@ -47,7 +47,7 @@ struct HudState {
   double removedMm3 = 0.0;
   std::string renderer;                        // type name of the renderer in charge
   bool milling = false;                        // the milling switch
-  bool fading = false;                         // a renderer cross-fade is running
+  bool swapPending = false;                    // a selected renderer has not taken over yet
   std::string status;                          // last notice (a swap, an error)
 };
 

@@ -14,7 +14,7 @@ void drawHud(const HudState& hud, const HudExtras& extras) {
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
                                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings;
   if (ImGui::Begin("HUD", nullptr, flags)) {
-    ImGui::Text("%s%s", hud.renderer.c_str(), hud.fading ? "  (cross-fading)" : "");
+    ImGui::Text("%s%s", hud.renderer.c_str(), hud.swapPending ? "  (swap pending)" : "");
     ImGui::Text("haptic rate  %7.0f Hz", hud.hapticRate);
     ImGui::Text("compute      %5.0f µs p50  %5.0f µs p99", hud.computeP50Us, hud.computeP99Us);
     ImGui::Text("force        %7.3f N    torque %7.4f N·m", hud.force, hud.torque);
