@@ -32,6 +32,8 @@
 #include "millsim/run/LiveUpdates.h"
 #include "millsim/run/RendererPool.h"
 #include "millsim/run/RunSetup.h"
+#include "millsim/graphics/SceneView.h"
+#include "millsim/std/ClipPlane.h"
 #include "millsim/std/WorldInfo.h"
 #include "millsim/window/WindowModule.h"
 #include "millsim/volume/VolumeObject.h"
@@ -212,6 +214,14 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     // with a window, feed its HUD and do what its keys asked.
     std::string status;
     LiveUpdates live(run, *loop);
+    // ClipPlanes cut the drawing only: a change (by a route) goes to the window.
+    auto clipSignature = [&] {
+      std::string sig;
+      for (const ClipPlane* c : r.scene->nodesOfType<ClipPlane>())
+        sig += c->plane.toString() + (c->enabled.get() ? "+" : "-") + ";";
+      return sig;
+    };
+    std::string clips = pool ? clipSignature() : std::string();
     while (!loop->finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       if (gInterrupted.load() || controls.closed()) loop->stop();
@@ -230,6 +240,11 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         continue;
       }
       pool->collect(*loop);
+      if (std::string now = clipSignature(); now != clips) {
+        clips = now;
+        controls.setSceneCuts(readSceneView(*r.scene));
+        status = "the scene's cut planes changed";
+      }
       if (std::string s = pool->followDeviceField(*loop); !s.empty()) status = s;
       if (std::string s = pool->followRendererFields(*loop); !s.empty()) status = s;
       HudState h = hud.state(status);

@@ -1,12 +1,15 @@
 #pragma once
 // What the window thread and the scene thread of `millsim run` share: the HUD
-// numbers (scene thread → window), the window's commands (window → scene
-// thread) and whether the user closed the window. A mutex guards it: neither
+// numbers and the scene's cut planes when a route changed them (scene thread →
+// window), the window's commands (window → scene thread) and whether the user
+// closed the window. A mutex guards it: neither
 // side is the haptic thread, and each holds it only to copy a few fields.
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "millsim/graphics/SceneView.h"
 #include "millsim/window/AppWindow.h"
 
 namespace millsim::app {
@@ -30,6 +33,15 @@ public:
     std::lock_guard lock(mutex_);
     return std::exchange(commands_, {});
   }
+  // The scene's cut planes, new while running (scene thread → window).
+  void setSceneCuts(SceneView cuts) {
+    std::lock_guard lock(mutex_);
+    cuts_ = std::move(cuts);
+  }
+  std::optional<SceneView> takeSceneCuts() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(cuts_, std::nullopt);
+  }
   void close() {
     std::lock_guard lock(mutex_);
     closed_ = true;
@@ -43,6 +55,7 @@ private:
   mutable std::mutex mutex_;
   HudState hud_;
   std::vector<WindowCommand> commands_;
+  std::optional<SceneView> cuts_;
   bool closed_ = false;
 };
 

@@ -147,6 +147,7 @@ void RunGraphics::runWindow() {
     const auto t0 = Clock::now();
     if (!window->pollEvents()) options_.controls->close();
     options_.controls->post(window->takeCommands());
+    if (auto cuts = options_.controls->takeSceneCuts()) window->sceneCutsChanged(*cuts);
     if (options_.pointer) {
       const PointerState p = window->pointer();
       options_.pointer->set(p.pose, p.button);

@@ -83,6 +83,27 @@ VolumeMesh& SceneDrawer::mesh(std::size_t index) {
   return *meshes_[index];
 }
 
+bool SceneDrawer::adoptCuts(const SceneView& fresh) {
+  if (fresh.volumes.size() != scene_.volumes.size() || fresh.shapes.size() != scene_.shapes.size()) return false;
+  std::vector<CutPlane> user;
+  for (const CutPlane& c : scene_.cutPlanes)
+    if (c.user) user.push_back(c);
+  scene_.cutPlanes = fresh.cutPlanes;
+  for (std::size_t i = 0; i < fresh.volumes.size(); ++i) {
+    scene_.volumes[i].clipPlanes = fresh.volumes[i].clipPlanes;
+    scene_.volumes[i].cuts = fresh.volumes[i].cuts;
+  }
+  for (std::size_t i = 0; i < fresh.shapes.size(); ++i) {
+    scene_.shapes[i].clipPlanes = fresh.shapes[i].clipPlanes;
+    scene_.shapes[i].cuts = fresh.shapes[i].cuts;
+  }
+  for (const CutPlane& c : user) {
+    scene_.cutPlanes.push_back(c);
+    for (DrawVolume& v : scene_.volumes) v.cuts.push_back(int(scene_.cutPlanes.size() - 1));
+  }
+  return true;
+}
+
 ClipPlanes SceneDrawer::planesFor(const std::vector<int>& cutIndices, bool volume) const {
   ClipPlanes out;
   for (int i : cutIndices) {

@@ -73,6 +73,11 @@ public:
   // The cut planes, scene ClipPlanes first (SceneView::cutPlanes), may be
   // moved, turned and switched off; they cut the drawing only.
   std::vector<CutPlane>& cutPlanes() { return scene_.cutPlanes; }
+  // The scene's ClipPlanes changed while running (a route set a plane or
+  // enabled): takes `fresh`'s cut planes and which objects each cuts, keeping
+  // the user's own plane. False (and nothing changed) if `fresh` has other
+  // volumes or shapes than this drawer.
+  bool adoptCuts(const SceneView& fresh);
   // SceneView::addUserCut: the user's own plane, facing `towards`.
   int addUserCut(const glm::dvec3& towards) { return scene_.addUserCut(towards); }
 

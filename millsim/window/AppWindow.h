@@ -71,6 +71,8 @@ public:
   virtual std::vector<WindowCommand> takeCommands() = 0;
   virtual PointerState pointer() const = 0;
 
+  // The scene's ClipPlanes changed while running (SceneDrawer::adoptCuts).
+  virtual void sceneCutsChanged(const SceneView& fresh) = 0;
   // Milled blocks of volume `index` (as VolumeReplica::apply gives them).
   virtual void volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) = 0;
   // Draws the scene, the tools and the HUD, and shows the frame.

@@ -125,6 +125,11 @@ public:
   std::vector<WindowCommand> takeCommands() override { return std::exchange(commands_, {}); }
   PointerState pointer() const override { return {pointerTool_.pose(), leftHeld_ || spaceMilling_}; }
 
+  void sceneCutsChanged(const SceneView& fresh) override {
+    drawer_->adoptCuts(fresh);
+    activeCut_ = std::clamp(activeCut_, 0, std::max(int(drawer_->cutPlanes().size()) - 1, 0));
+  }
+
   void volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) override {
     SDL_GL_MakeCurrent(window_, context_);
     drawer_->volumeChanged(index, blocks);

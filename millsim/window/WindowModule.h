@@ -15,7 +15,7 @@ class Scene;
 struct WindowOptions;
 
 // Bumped whenever AppWindow or this table change incompatibly.
-inline constexpr int kWindowAbiVersion = 1;
+inline constexpr int kWindowAbiVersion = 2;
 
 struct WindowModule {
   int abiVersion;

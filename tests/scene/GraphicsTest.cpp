@@ -10,6 +10,8 @@
 #include "millsim/graphics/Examine.h"
 #include "millsim/graphics/GlContext.h"
 #include "millsim/graphics/PointerTool.h"
+#include "millsim/graphics/SceneDrawer.h"
+#include "millsim/std/ClipPlane.h"
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/SceneRenderer.h"
 #include "millsim/volume/VoxelScene.h"
@@ -261,4 +263,37 @@ TEST(PointerTool, BurrFollowsTheCursorOnItsPlaneAndPushesInDepth) {
   EXPECT_NEAR(tool.pose().position.z, -0.002, 1e-9) << "two notches away from the viewer";
   tool.turn(cam, 0.0, 150.0);  // half the height: a quarter turn about the screen's right axis
   EXPECT_NEAR(std::abs(tool.pose().shaftDirection().z), 1.0, 1e-9);
+}
+
+// A ClipPlane switched off while running (by a route) reaches the drawing:
+// the drawer takes the fresh cut layout and keeps the user's own plane.
+TEST(SceneDrawer, AdoptsChangedClipPlanesKeepingTheUserCut) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("cut.x3d", x3d(R"(
+    <Group>
+      <ClipPlane DEF="Cut" plane="0 -1 0 0"/>
+      <VolumeObject url='"phantom:tooth?size=16,16,12"'/>
+    </Group>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  GlContext context(32, 32);
+  SceneDrawer drawer(readSceneView(*r.scene));
+  ASSERT_EQ(drawer.cutPlanes().size(), 1u);
+  const int user = drawer.addUserCut(glm::dvec3(0, 0, 1));
+  drawer.cutPlanes()[std::size_t(user)].enabled = true;
+  ASSERT_EQ(drawer.scene().volumes[0].cuts.size(), 2u);
+
+  dynamic_cast<ClipPlane&>(*r.scene->def("Cut")).enabled.set(false);
+  ASSERT_TRUE(drawer.adoptCuts(readSceneView(*r.scene)));
+  ASSERT_EQ(drawer.cutPlanes().size(), 1u) << "the scene's plane is gone, the user's stays";
+  EXPECT_TRUE(drawer.cutPlanes()[0].user);
+  EXPECT_TRUE(drawer.cutPlanes()[0].enabled);
+  EXPECT_EQ(drawer.scene().volumes[0].cuts, std::vector<int>{0});
+
+  dynamic_cast<ClipPlane&>(*r.scene->def("Cut")).enabled.set(true);
+  ASSERT_TRUE(drawer.adoptCuts(readSceneView(*r.scene)));
+  EXPECT_EQ(drawer.cutPlanes().size(), 2u);
+  EXPECT_EQ(drawer.scene().volumes[0].cuts, (std::vector<int>{0, 1}));
+  drawer.draw(32, 32, {});
+  GlContext::check("drawing after adopting cuts");
 }
