@@ -43,7 +43,9 @@ Trajectory Trajectory::load(const std::filesystem::path& file) {
 
 Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
   std::vector<TrajectorySample> rows;
-  std::istringstream in(text);
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
+  const bool bom = text.rfind("\xEF\xBB\xBF", 0) == 0;
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string line;
   int lineNo = 0;
   bool sawHeader = false;
@@ -56,12 +58,24 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
     if (l.find_first_not_of(" \t") == std::string_view::npos || l.front() == '#') continue;
     auto cells = splitCsv(l);
     if (!sawHeader) {
-      if (cells.size() < expected.size() || !std::equal(expected.begin(), expected.end(), cells.begin()))
-        throw TrajectoryError(where + "expected the header '" + kHeader + "', found '" + std::string(l) + "'");
+      // Every column is used, in this order; an unknown one is an error rather than silently dropped.
+      const std::string header = where + "expected the header '" + kHeader + "', found '" + std::string(l) + "': ";
+      for (std::size_t c = 0; c < cells.size(); ++c) {
+        if (c < expected.size() && cells[c] == expected[c]) continue;
+        const bool known = std::find(expected.begin(), expected.end(), cells[c]) != expected.end();
+        if (!known)
+          throw TrajectoryError(header + "unknown column '" + std::string(cells[c]) + "' (column " +
+                                std::to_string(c + 1) + "); the accepted columns are " + kHeader + ", in this order");
+        throw TrajectoryError(header + "column " + std::to_string(c + 1) + " is '" + std::string(cells[c]) +
+                              "', expected " +
+                              (c < expected.size() ? "'" + std::string(expected[c]) + "'" : std::string("no more")));
+      }
+      if (cells.size() < expected.size())
+        throw TrajectoryError(header + "missing column '" + std::string(expected[cells.size()]) + "'");
       sawHeader = true;
       continue;
     }
-    if (cells.size() < expected.size())
+    if (cells.size() != expected.size())
       throw TrajectoryError(where + "expected " + std::to_string(expected.size()) + " columns (" + kHeader +
                             "), found " + std::to_string(cells.size()));
     double v[9];
