@@ -10,6 +10,7 @@
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/std/Transform.h"
 #include "millsim/volume/PlacedVolumes.h"
+#include "millsim/volume/PointShell.h"
 #include "millsim/volume/VolumeObject.h"
 
 namespace millsim {
@@ -71,7 +72,8 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
   MillTool defaultTool;
   const MillTool& tool = device.tool.get() ? *device.tool.get() : defaultTool;
   const double burr = 2.0 * tool.tipRadius.get();
-  for (const PlacedVolume& v : placedVolumes(scene)) {
+  const std::vector<PlacedVolume> volumes = placedVolumes(scene);
+  for (const PlacedVolume& v : volumes) {
     const glm::dvec3 local = v.node->size();
     glm::dvec3 world;
     for (int a = 0; a < 3; ++a) world[a] = local[a] * glm::length(glm::dvec3(v.localToWorld[a]));
@@ -83,6 +85,30 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
                      describe(*v.node) + " (" + mm(world.x) + " x " + mm(world.y) + " x " + mm(world.z) +
                      " mm); check tipRadius (metres) and the volume's voxel size (millimetres in files)");
   }
+
+  // The renderer's estimated frame cost against the device's frame budget.
+  const HapticsRendererNode* renderer = device.hapticsRenderer.get().get();
+  if (!renderer) return;
+  FrameCostContext context;
+  context.tool = tool.geometry();
+  for (const PlacedVolume& v : volumes) {
+    const double edge = v.node->voxelEdge();
+    if (edge > 0.0 && (context.voxelSize == 0.0 || edge < context.voxelSize)) context.voxelSize = edge;
+  }
+  context.shellPoints = [&volumes](int scale) {
+    std::size_t n = 0;
+    for (const PlacedVolume& v : volumes) n += v.node->pointShell(scale).size();
+    return n;
+  };
+  const FrameCostEstimate cost = renderer->estimateFrameCost(context);
+  const double budget = 1.0 / double(device.desiredHapticsRate.get());
+  if (cost.seconds > budget)
+    sink.warning(renderer->location(),
+                 renderer->typeName() + " cannot keep up with " + device.typeName() + "'s desiredHapticsRate " +
+                     std::to_string(device.desiredHapticsRate.get()) + " Hz: its estimated frame cost is " +
+                     formatNumber(std::round(cost.seconds * 1e7) / 10.0) + " us (" + cost.model +
+                     "), over the frame budget of " + formatNumber(std::round(budget * 1e7) / 10.0) +
+                     " us; " + cost.advice + ", or lower desiredHapticsRate");
 }
 
 }  // namespace millsim
