@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,7 @@
 namespace millsim {
 
 namespace {
+constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 30;  // 1 GiB of CSV text: more than kMaxRows rows need
 constexpr const char* kHeader = "t,x,y,z,qw,qx,qy,qz,button";
 
 std::vector<std::string_view> splitCsv(std::string_view line) {
@@ -34,6 +36,21 @@ Trajectory::Trajectory(std::vector<TrajectorySample> samples) : samples_(std::mo
 }
 
 Trajectory Trajectory::load(const std::filesystem::path& file) {
+  // Reading a FIFO would wait forever and a device such as /dev/zero never
+  // ends; a file past kMaxBytes cannot hold a valid trajectory's rows anyway.
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    const char* kind = st.type() == std::filesystem::file_type::fifo        ? "a FIFO (named pipe)"
+                       : st.type() == std::filesystem::file_type::directory ? "a folder"
+                       : st.type() == std::filesystem::file_type::character ? "a character device"
+                       : st.type() == std::filesystem::file_type::block     ? "a block device"
+                                                                             : "not a regular file";
+    throw TrajectoryError(file.string() + ": is " + kind + "; trajectories are read from regular files");
+  }
+  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > kMaxBytes)
+    throw TrajectoryError(file.string() + ": is " + std::to_string(bytes) + " bytes; trajectory files over " +
+                          std::to_string(kMaxBytes) + " bytes are refused");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw TrajectoryError(file.string() + ": cannot open the trajectory file");
   std::stringstream ss;

@@ -113,3 +113,22 @@ ds.Columns = 30000
 ds.PixelData = bytes(200)
 ds.save_as(replace(os.path.join(out, "huge.dcm")))
 scene("dcm-huge-rows", "huge.dcm")
+
+
+# Trajectory urls that are a FIFO or /dev/zero: a clear error, not a hang.
+def device_scene(name, url):
+    with open(os.path.join(out, name + ".x3d"), "w") as f:
+        f.write(f"""<?xml version="1.0" encoding="UTF-8"?>
+<X3D profile="Immersive" version="3.3">
+  <Scene>
+    <VolumeObject url='"phantom:tooth?size=16,16,12"'/>
+    <HandDevice url='"{url}"'><MillTool/><SurfacePointRenderer/></HandDevice>
+  </Scene>
+</X3D>
+""")
+
+
+os.mkfifo(replace(os.path.join(out, "fifo.csv")))
+device_scene("trajectory-fifo", "fifo.csv")
+os.symlink("/dev/zero", replace(os.path.join(out, "zero.csv")))
+device_scene("trajectory-zero", "zero.csv")
