@@ -3,6 +3,7 @@
 // initialisers.
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/AresDevice.h"
+#include "millsim/devices/DeviceChecks.h"
 #include "millsim/devices/HandDevice.h"
 #include "millsim/devices/MouseDevice.h"
 #include "millsim/devices/TrajectoryDevice.h"
@@ -20,6 +21,7 @@ void registerBuiltinNodes(NodeRegistry& r) {
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
                             &HandDevice::type(), &AresDevice::type(), &MouseDevice::type()})
     r.add(*t);
+  r.addSceneCheck(&checkDevices);
 }
 
 NodeRegistry builtinRegistry() {

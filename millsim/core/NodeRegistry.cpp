@@ -15,6 +15,10 @@ void NodeRegistry::add(NodeType type) {
   types_.emplace(std::move(key), std::move(type));
 }
 
+void NodeRegistry::addSceneCheck(SceneCheck check) {
+  if (check && std::find(checks_.begin(), checks_.end(), check) == checks_.end()) checks_.push_back(check);
+}
+
 const NodeType* NodeRegistry::find(std::string_view name) const {
   auto it = types_.find(name);
   return it == types_.end() ? nullptr : &it->second;

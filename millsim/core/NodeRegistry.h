@@ -12,6 +12,15 @@
 
 namespace millsim {
 
+class Scene;
+class DiagnosticSink;
+
+// A check of a whole loaded scene (the structure no single node can see:
+// several devices, a device under a Transform, a tool larger than the
+// volume). The loader runs every registered check after reading the main
+// file, so `check`, `run`, `replay` and `render` report the same problems.
+using SceneCheck = void (*)(const Scene& scene, DiagnosticSink& sink);
+
 class NodeRegistry {
 public:
   // Throws std::invalid_argument if the name is taken or the type is incomplete.
@@ -24,8 +33,13 @@ public:
   // Closest registered names to a misspelt one, for "did you mean" hints.
   std::vector<std::string> suggest(std::string_view name, std::size_t max = 3) const;
 
+  // Adds a whole-scene check (once: adding the same function again does nothing).
+  void addSceneCheck(SceneCheck check);
+  const std::vector<SceneCheck>& sceneChecks() const { return checks_; }
+
 private:
   std::map<std::string, NodeType, std::less<>> types_;
+  std::vector<SceneCheck> checks_;
 };
 
 // The standard X3D node types MillSim provides.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,7 @@
 namespace millsim {
 
 namespace {
+constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 30;  // 1 GiB of CSV text: more than kMaxRows rows need
 constexpr const char* kHeader = "t,x,y,z,qw,qx,qy,qz,button";
 
 std::vector<std::string_view> splitCsv(std::string_view line) {
@@ -34,6 +36,21 @@ Trajectory::Trajectory(std::vector<TrajectorySample> samples) : samples_(std::mo
 }
 
 Trajectory Trajectory::load(const std::filesystem::path& file) {
+  // Reading a FIFO would wait forever and a device such as /dev/zero never
+  // ends; a file past kMaxBytes cannot hold a valid trajectory's rows anyway.
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    const char* kind = st.type() == std::filesystem::file_type::fifo        ? "a FIFO (named pipe)"
+                       : st.type() == std::filesystem::file_type::directory ? "a folder"
+                       : st.type() == std::filesystem::file_type::character ? "a character device"
+                       : st.type() == std::filesystem::file_type::block     ? "a block device"
+                                                                             : "not a regular file";
+    throw TrajectoryError(file.string() + ": is " + kind + "; trajectories are read from regular files");
+  }
+  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > kMaxBytes)
+    throw TrajectoryError(file.string() + ": is " + std::to_string(bytes) + " bytes; trajectory files over " +
+                          std::to_string(kMaxBytes) + " bytes are refused");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw TrajectoryError(file.string() + ": cannot open the trajectory file");
   std::stringstream ss;
@@ -43,7 +60,9 @@ Trajectory Trajectory::load(const std::filesystem::path& file) {
 
 Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
   std::vector<TrajectorySample> rows;
-  std::istringstream in(text);
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
+  const bool bom = text.rfind("\xEF\xBB\xBF", 0) == 0;
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string line;
   int lineNo = 0;
   bool sawHeader = false;
@@ -56,12 +75,24 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
     if (l.find_first_not_of(" \t") == std::string_view::npos || l.front() == '#') continue;
     auto cells = splitCsv(l);
     if (!sawHeader) {
-      if (cells.size() < expected.size() || !std::equal(expected.begin(), expected.end(), cells.begin()))
-        throw TrajectoryError(where + "expected the header '" + kHeader + "', found '" + std::string(l) + "'");
+      // Every column is used, in this order; an unknown one is an error rather than silently dropped.
+      const std::string header = where + "expected the header '" + kHeader + "', found '" + std::string(l) + "': ";
+      for (std::size_t c = 0; c < cells.size(); ++c) {
+        if (c < expected.size() && cells[c] == expected[c]) continue;
+        const bool known = std::find(expected.begin(), expected.end(), cells[c]) != expected.end();
+        if (!known)
+          throw TrajectoryError(header + "unknown column '" + std::string(cells[c]) + "' (column " +
+                                std::to_string(c + 1) + "); the accepted columns are " + kHeader + ", in this order");
+        throw TrajectoryError(header + "column " + std::to_string(c + 1) + " is '" + std::string(cells[c]) +
+                              "', expected " +
+                              (c < expected.size() ? "'" + std::string(expected[c]) + "'" : std::string("no more")));
+      }
+      if (cells.size() < expected.size())
+        throw TrajectoryError(header + "missing column '" + std::string(expected[cells.size()]) + "'");
       sawHeader = true;
       continue;
     }
-    if (cells.size() < expected.size())
+    if (cells.size() != expected.size())
       throw TrajectoryError(where + "expected " + std::to_string(expected.size()) + " columns (" + kHeader +
                             "), found " + std::to_string(cells.size()));
     double v[9];

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 namespace millsim {
 
@@ -13,16 +14,28 @@ const NodeType& TrajectoryDevice::type() {
 
 std::shared_ptr<const Trajectory> loadDeviceTrajectory(const Node& node, const std::vector<std::string>& urls,
                                                        DiagnosticSink& sink) {
-  if (urls.empty()) return nullptr;
+  if (urls.empty()) {
+    // A warning, not an error: `replay` and `render` take --trajectory for such a scene.
+    sink.warning(node.location(), node.typeName() +
+                                      " has no trajectory url: `millsim run` refuses it; `millsim replay` and "
+                                      "`render` need --trajectory T.csv (set url='\"path/to/trajectory.csv\"')");
+    return nullptr;
+  }
   const std::filesystem::path base = node.location().file.empty()
                                          ? std::filesystem::path()
                                          : std::filesystem::path(node.location().file).parent_path();
   std::string failures;
+  std::vector<std::string> failed;
   for (const std::string& u : urls) {
     try {
-      return std::make_shared<const Trajectory>(Trajectory::load(base / u));
+      auto loaded = std::make_shared<const Trajectory>(Trajectory::load(base / u));
+      // A fallback url loaded: say why each earlier one did not.
+      for (const std::string& f : failed)
+        sink.note(node.location(), node.typeName() + " trajectory url failed, a later one was used: " + f);
+      return loaded;
     } catch (const std::exception& e) {
       failures += std::string("\n  ") + e.what();
+      failed.emplace_back(e.what());
     }
   }
   sink.error(node.location(), node.typeName() + " could not load any of its trajectory urls:" + failures);

@@ -7,6 +7,8 @@
 // tool's geometry, into a HapticAlgorithm: parameters fixed, state of its own.
 // One step is a function of (the scene view, algorithm state, device pose, dt),
 // so replays are bit-reproducible.
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -63,6 +65,22 @@ public:
   virtual void carryOver(const HapticAlgorithm& previous) { (void)previous; }
 };
 
+// What a renderer's frame-cost estimate may look at (`millsim check`, millsim/devices/DeviceChecks.cpp).
+struct FrameCostContext {
+  ToolGeometry tool;
+  double voxelSize = 0.0;  // the finest voxel edge of the scene's volumes (m); 0 without volumes
+  // Points of all volumes' point shells at an integer scale (built on demand; may be costly).
+  std::function<std::size_t(int scale)> shellPoints;
+};
+
+// A simple cost model: the work of the worst frame (points or vertices
+// sampled) times a measured time per unit on the development machine.
+struct FrameCostEstimate {
+  double seconds = 0.0;  // 0: the renderer declares no model
+  std::string model;     // how it was estimated, e.g. "13800 points x 92 ns"
+  std::string advice;    // what lowers it, e.g. "lower sphereVertices, slices or verticesPerSlice"
+};
+
 class HapticsRendererNode : public Node {
 public:
   static constexpr std::string_view kindName = "a haptics renderer (LineProxyRenderer, SurfacePointRenderer, ...)";
@@ -71,6 +89,9 @@ public:
   // The default, for renderers that declare nothing: no stiffness field, no
   // resolution sweeps, the Coupling reference, not constraining the tool.
   virtual RendererTraits traits() const { return {}; }
+  // Estimated compute time of this configuration's worst frame; `millsim
+  // check` warns when it exceeds the device's frame budget (1/desiredHapticsRate).
+  virtual FrameCostEstimate estimateFrameCost(const FrameCostContext&) const { return {}; }
 };
 
 // Replaces NaN/Inf in an output with zero force and torque and flags it: no

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -229,6 +231,37 @@ std::unique_ptr<HapticAlgorithm> BarbicRenderer::compile(const ToolGeometry& too
 
 // A tool body on a virtual coupling: the stiffness is the coupling, the
 // resolution the point shell's scale, and the tool body never enters material.
+// Cost model (`millsim check`): a frame tests the shell points near the tool
+// (with culling: at most a surface wrapped around the tool, its area over the
+// shell spacing (pointShellScale x voxel)², capped by maxTestedPoints; without
+// culling: every shell point) at kNsPerPoint each (distance lookup and the
+// 6x6 assembly). Measured with `millsim bench rates --renderer BarbicRenderer
+// --field culling --values false` on the tooth phantom (2-core AMD EPYC VM
+// shared with a build, release): every one of the 5868 points of the scale-3
+// shell in 118 us a frame, 20 ns per point. docs/algorithms.md, "Frame cost model".
+FrameCostEstimate BarbicRenderer::estimateFrameCost(const FrameCostContext& context) const {
+  constexpr double kNsPerPoint = 20.0;
+  const int scale = pointShellScale.get();
+  std::size_t points = 0;
+  std::string how;
+  if (!culling.get()) {
+    points = context.shellPoints ? context.shellPoints(scale) : 0;
+    how = std::to_string(points) + " points (the whole point shell at pointShellScale " + std::to_string(scale) +
+          ", culling off)";
+  } else {
+    if (!(context.voxelSize > 0.0)) return {};
+    const ToolGeometry& t = context.tool;
+    const double area = 4.0 * std::numbers::pi * t.tipRadius * t.tipRadius +
+                        2.0 * std::numbers::pi * t.shaftRadius * t.shaftLength;
+    const double spacing = scale * context.voxelSize;
+    points = std::min<std::size_t>(std::size_t(area / (spacing * spacing)), std::size_t(maxTestedPoints.get()));
+    how = std::to_string(points) + " points (the tool's surface over (pointShellScale x voxel)², at most "
+                                   "maxTestedPoints)";
+  }
+  return {double(points) * kNsPerPoint * 1e-9, how + " x " + formatNumber(kNsPerPoint) + " ns",
+          culling.get() ? "raise pointShellScale or lower maxTestedPoints" : "set culling true or raise pointShellScale"};
+}
+
 RendererTraits BarbicRenderer::traits() const {
   RendererTraits t;
   t.stiffnessField = "couplingStiffness";

@@ -18,6 +18,7 @@ public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
   RendererTraits traits() const override;
+  FrameCostEstimate estimateFrameCost(const FrameCostContext& context) const override;
 
   SFInt32 pointShellScale{this, "pointShellScale", Access::InitializeOnly, 3,
                           "Point shell scaling factor: 1 is every surface voxel; the paper chose 3.", Range::closed(1, 8)};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -262,6 +263,23 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
 
 // A proxy on a spring: the stiffness is its spring, the resolution its
 // centreline vertices, and the proxy never enters material.
+// Cost model (`millsim check`): the worst frame is a first shaft contact,
+// whose search (eq. 3-4) samples the centreline at up to translationSteps +
+// rotationSteps poses besides the frame's own: vertexCount x (1 +
+// translationSteps + rotationSteps) samples x kNsPerSample. Measured with
+// `millsim bench rates --renderer LineProxyRenderer` on the tooth phantom
+// (2-core AMD EPYC VM shared with a build, release): vertexCount 51 -> 1000
+// took 5.23 -> 57.7 us a frame, 55 ns per added vertex sample.
+// docs/algorithms.md, "Frame cost model".
+FrameCostEstimate LineProxyRenderer::estimateFrameCost(const FrameCostContext&) const {
+  constexpr double kNsPerSample = 55.0;
+  const long samples = long(vertexCount.get()) * (1L + translationSteps.get() + rotationSteps.get());
+  return {double(samples) * kNsPerSample * 1e-9,
+          std::to_string(samples) + " samples in a first shaft contact (vertexCount x (1 + translationSteps + "
+                                    "rotationSteps)) x " + formatNumber(kNsPerSample) + " ns",
+          "lower vertexCount, translationSteps or rotationSteps"};
+}
+
 RendererTraits LineProxyRenderer::traits() const {
   RendererTraits t;
   t.stiffnessField = "springConstant";

@@ -14,6 +14,7 @@ public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
   RendererTraits traits() const override;
+  FrameCostEstimate estimateFrameCost(const FrameCostContext& context) const override;
 
   SFInt32 vertexCount{this, "vertexCount", Access::InputOutput, 51,
                       "Vertices on the centreline, the burr centre included (paper: 51).", Range::closed(2, 1000)};

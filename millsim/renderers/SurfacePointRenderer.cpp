@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -155,6 +156,23 @@ std::unique_ptr<HapticAlgorithm> SurfacePointRenderer::compile(const ToolGeometr
 
 // Penalty forces on points of the tool: the stiffness is the shared spring,
 // the resolutions the burr and shaft points; nothing holds the tool outside.
+// Cost model (`millsim check`): every frame samples the field (and, in
+// contact, its gradient) at every tool point, so a frame costs
+// points x kNsPerPoint. Measured with `millsim bench rates --renderer
+// SurfacePointRenderer` on the tooth phantom (2-core AMD EPYC VM shared with
+// a build, release): sphereVertices 24 -> 1000 took 14.9 -> 149 us a frame,
+// 137 ns per added point (in contact: field and gradient); slices 20 -> 200
+// 15.5 -> 123 us, 75 ns per added shaft point (mostly free). The model takes
+// the contact figure, rounded up. docs/algorithms.md, "Frame cost model".
+FrameCostEstimate SurfacePointRenderer::estimateFrameCost(const FrameCostContext&) const {
+  constexpr double kNsPerPoint = 140.0;
+  const long points = long(sphereVertices.get()) + long(slices.get()) * long(verticesPerSlice.get());
+  return {double(points) * kNsPerPoint * 1e-9,
+          std::to_string(points) + " points (sphereVertices + slices x verticesPerSlice) x " +
+              formatNumber(kNsPerPoint) + " ns",
+          "lower sphereVertices, slices or verticesPerSlice"};
+}
+
 RendererTraits SurfacePointRenderer::traits() const {
   RendererTraits t;
   t.stiffnessField = "springConstant";

@@ -14,6 +14,7 @@ public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
   RendererTraits traits() const override;
+  FrameCostEstimate estimateFrameCost(const FrameCostContext& context) const override;
 
   SFInt32 sphereVertices{this, "sphereVertices", Access::InputOutput, 24,
                          "Vertices on the burr sphere (paper: 24), spread evenly (Fibonacci lattice).",

@@ -41,6 +41,7 @@
 #include <gdcmTag.h>
 #include <gdcmTrace.h>
 
+#include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeIO.h"
 
 namespace fs = std::filesystem;
@@ -78,6 +79,8 @@ struct DicomFacts {
   bool walked = false;  // false for deflated data sets, which only GDCM can inflate
   std::string sopClass, modality;
   bool pixelData = false;
+  bool encapsulated = false;          // Pixel Data of undefined length: compressed fragments
+  std::uint64_t pixelDataBytes = 0;   // its value length, or the sum of its fragments
 };
 
 class StructureCheck {
@@ -186,8 +189,10 @@ private:
         if (!inItem) fail("malformed DICOM file: item delimiter outside an item at byte " + std::to_string(pos));
         return e.value;
       }
-      if (depth == 0 && e.group == 0x7fe0 && e.element == 0x0010) facts_.pixelData = true;
+      const bool pixels = depth == 0 && e.group == 0x7fe0 && e.element == 0x0010;
+      if (pixels) facts_.pixelData = true;
       if (!e.undefined) {
+        if (pixels) facts_.pixelDataBytes = e.length;
         need(e.value, e.length, e);
         if (depth == 0 && e.group == 0x0008 && e.element == 0x0060) facts_.modality = text(e);
         pos = e.value + e.length;
@@ -196,7 +201,12 @@ private:
       // Undefined length: a sequence, or encapsulated pixel data; both are lists of items.
       // Inside UN of undefined length the content is implicit VR little endian (CP-246).
       const bool un = e.vr[0] == 'U' && e.vr[1] == 'N';
+      const std::size_t start = e.value;
       pos = items(e.value, un ? false : explicitVr, un ? false : big, depth, e);
+      if (pixels) {
+        facts_.encapsulated = true;
+        facts_.pixelDataBytes = pos - start;
+      }
     }
     if (inItem) fail("truncated DICOM file: it ends inside a sequence item");
     return pos;
@@ -235,7 +245,7 @@ void refuseModality(const std::string& name, const std::string& modality) {
 }
 
 // Throws unless the file is structurally complete and, as far as can be told without GDCM, a CT image.
-void checkStructure(const fs::path& file) {
+DicomFacts checkStructure(const fs::path& file) {
   const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
   if (!in) throw VolumeError(name + ": cannot open the file");
@@ -243,9 +253,10 @@ void checkStructure(const fs::path& file) {
   const DicomFacts facts = StructureCheck(name, std::move(bytes)).run();
   if (facts.sopClass == "1.2.840.10008.1.3.10")
     throw VolumeError(name + ": is a DICOMDIR (an index of other files), not an image; give the folder of slices");
-  if (!facts.walked) return;
+  if (!facts.walked) return facts;
   refuseModality(name, facts.modality);
   if (!facts.pixelData) throw VolumeError(name + ": no Pixel Data (7fe0,0010): not an image");
+  return facts;
 }
 
 // ---------------------------------------------------------------------------
@@ -280,7 +291,7 @@ std::vector<double> numbers(const std::string& s) {
 
 Slice readSliceHeader(const fs::path& file) {
   const std::string name = file.string();
-  checkStructure(file);
+  const DicomFacts facts = checkStructure(file);
   gdcm::Reader reader;
   reader.SetFileName(name.c_str());
   if (!reader.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010)))
@@ -304,6 +315,24 @@ Slice readSliceHeader(const fs::path& file) {
   s.rows = unsigned(std::atoi(str(0x0028, 0x0010).c_str()));
   s.cols = unsigned(std::atoi(str(0x0028, 0x0011).c_str()));
   if (s.rows == 0 || s.cols == 0) throw VolumeError(name + ": no Rows/Columns: not an image");
+  const unsigned bits = unsigned(std::atoi(str(0x0028, 0x0100).c_str()));
+  if (facts.walked && bits > 0) {
+    // The declared image size against the Pixel Data the file holds, before
+    // anything that size is allocated (GDCM's buffer, the volume). Native
+    // data holds every byte; compressed fragments are allowed a generous
+    // ratio (kMaxDeflateRatio plus 1 MiB: JPEG-LS and JPEG 2000 compress a
+    // uniform slice further than deflate, but a slice is at most megabytes).
+    const std::uint64_t declared = (std::uint64_t(s.rows) * s.cols * bits + 7) / 8;
+    const std::string shape = std::to_string(s.cols) + "x" + std::to_string(s.rows) + " pixels of " +
+                              std::to_string(bits) + " bits (" + std::to_string(declared) + " bytes)";
+    if (!facts.encapsulated && facts.pixelDataBytes < declared)
+      throw VolumeError(name + ": header/size mismatch: Rows/Columns/BitsAllocated declare " + shape +
+                        ", Pixel Data (7fe0,0010) holds " + std::to_string(facts.pixelDataBytes) + " bytes");
+    if (facts.encapsulated && declared > facts.pixelDataBytes * kMaxDeflateRatio + (std::uint64_t(1) << 20))
+      throw VolumeError(name + ": header/size mismatch: Rows/Columns/BitsAllocated declare " + shape +
+                        ", but the compressed Pixel Data (7fe0,0010) holds only " +
+                        std::to_string(facts.pixelDataBytes) + " bytes, which cannot expand that far");
+  }
 
   const auto ps = numbers(str(0x0028, 0x0030));
   if (ps.empty()) throw VolumeError(name + ": no PixelSpacing (0028,0030): the voxel spacing is unknown");

@@ -29,6 +29,7 @@
 #include <vtkType.h>
 #include <zlib.h>
 
+#include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VtkReading.h"
 
@@ -122,11 +123,10 @@ VoxelVolume readMetaImage(const fs::path& file, float airValue) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw VolumeError(name + ": cannot open the file");
   std::map<std::string, std::string> f;  // lower-cased keys
-  std::uintmax_t headerBytes = 0;
   bool sawDataFile = false;
-  for (std::string line; std::getline(in, line);) {
-    headerBytes += line.size() + (in.eof() ? 0 : 1);
-    if (headerBytes > (1u << 20)) break;
+  // Capped: a header that never ends, or one endless line, stops at kMaxHeaderBytes.
+  HeaderLines lines(in, name, "MetaImage", "an ElementDataFile line");
+  for (std::string line; lines.next(line);) {
     const std::size_t eq = line.find('=');
     if (eq == std::string::npos) {
       if (trim(line).empty()) continue;
@@ -214,7 +214,7 @@ VoxelVolume readMetaImage(const fs::path& file, float airValue) {
   long long headerSize = 0;
   if (!get("headersize").empty()) headerSize = std::strtoll(get("headersize").c_str(), nullptr, 10);
   const bool compressed = isTrue(get("compresseddata"));
-  std::uintmax_t offset = local ? headerBytes : 0;
+  std::uintmax_t offset = local ? lines.consumed() : 0;
   if (!local && headerSize > 0) offset = std::uintmax_t(headerSize);
   if (!local && headerSize == -1 && !compressed) offset = size >= want ? size - want : 0;
   const std::uintmax_t available = size > offset ? size - offset : 0;
@@ -237,6 +237,10 @@ VoxelVolume readMetaImage(const fs::path& file, float airValue) {
       // MetaIO cannot find the end of LOCAL compressed data without it (it fails to decompress).
       throw VolumeError(name + ": CompressedData = True with LOCAL data needs a CompressedDataSize field");
     }
+    // Refused before inflating anything when deflate cannot expand that far (ReaderLimits.h).
+    if (deflateCannotHold(compressedBytes, want))
+      throw VolumeError(name + ": truncated data: the header promises " + promise + ", but " + where + " holds only " +
+                        std::to_string(compressedBytes) + " compressed bytes, which zlib cannot expand that far");
     std::ifstream data(dataPath, std::ios::binary);
     data.seekg(std::streamoff(offset));
     const std::string error = checkCompressed(data, compressedBytes, want);

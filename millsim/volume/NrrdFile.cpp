@@ -30,6 +30,7 @@
 
 #include <zlib.h>
 
+#include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeIO.h"
 
 namespace fs = std::filesystem;
@@ -201,14 +202,9 @@ NrrdHeader parseHeader(const fs::path& file) {
   if (!in) throw VolumeError(name + ": cannot open the file");
   NrrdHeader h;
   std::string line;
-  std::uintmax_t pos = 0;
-  auto nextLine = [&]() -> bool {
-    if (!std::getline(in, line)) return false;
-    pos += line.size() + (in.eof() ? 0 : 1);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (pos > (std::uintmax_t(16) << 20)) throw VolumeError(name + ": NRRD header longer than 16 MiB (no blank line ends it)");
-    return true;
-  };
+  // Capped: a header that never ends, or one endless line, stops at kMaxHeaderBytes.
+  HeaderLines lines(in, name, "NRRD", "a blank line");
+  auto nextLine = [&]() -> bool { return lines.next(line); };
   if (!nextLine() || line.rfind("NRRD000", 0) != 0)
     throw VolumeError(name + ": not a NRRD file (the first line must be NRRD0001 to NRRD0005)");
 
@@ -281,7 +277,7 @@ NrrdHeader parseHeader(const fs::path& file) {
     }
     // Other fields (space, space origin, units, labels, centers, ...) do not change the voxels.
   }
-  h.headerBytes = pos;
+  h.headerBytes = lines.consumed();
   if (!ended && h.dataFile.empty())
     throw VolumeError(name + ": the NRRD header has no 'data file' field and no blank line after it, so there is no data");
   return h;
@@ -395,11 +391,9 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
                         ", " + where + " has " + std::to_string(available));
   }
 
-  // Deflate expands at most about 1032:1, so compressed data that cannot hold
-  // what the header promises is refused before the voxels are allocated (a
-  // 1 KB file claiming 1024³ voxels would otherwise cost 4 GB first).
-  constexpr std::uintmax_t kMaxDeflateRatio = 1032;
-  if (enc == "gzip" && available * kMaxDeflateRatio + 1024 < want)
+  // Compressed data that cannot expand to what the header promises is refused
+  // before the voxels are allocated (ReaderLimits.h).
+  if (enc == "gzip" && deflateCannotHold(available, want))
     throw VolumeError(name + ": truncated data: the header promises " + promised(want, dims, h.typeName) + ", but " +
                       where + " holds only " + std::to_string(available) +
                       " compressed bytes, which gzip cannot expand that far");

@@ -28,6 +28,7 @@ struct ToothDensities {
 };
 
 // Parses "phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1]". Throws VolumeError.
+// (In an X3D attribute each '&' is written "&amp;"; libxml2 turns it back.)
 ToothPhantomOptions parsePhantomUrl(const std::string& url);
 // Builds the phantom; the size is scaled so the tooth fills the same fraction
 // of the volume whatever the voxel count (voxelSize then follows from dims).

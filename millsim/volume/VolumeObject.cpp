@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <new>
+#include <vector>
 
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/VolumeIO.h"
@@ -34,6 +35,7 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
     return;
   }
   std::string failures;
+  std::vector<std::string> failed;
   for (const std::string& u : url.get()) {
     try {
       LoadedVolume loaded = loadVolume(u, base, airValue.get());
@@ -46,6 +48,9 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
       }
       format_ = loaded.format;
       loadedUrl.set(u);
+      // A fallback url loaded: say why each earlier one did not.
+      for (const std::string& f : failed)
+        sink.note(location(), "VolumeObject url failed, a later one was used: " + f);
       // A volume with nothing above isoValue is felt, milled and drawn as
       // nothing: almost always the wrong isoValue, units or voxel size.
       // Stops at the first voxel with material: a whole scan only for the volume that has none.
@@ -60,13 +65,25 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
                                    "; check isoValue, the data's units or the voxel size");
       return;
     } catch (const VolumeError& e) {
-      failures += std::string("\n  ") + e.what();
+      failed.emplace_back(e.what());
+      failures += "\n  " + failed.back();
     } catch (const std::bad_alloc&) {
       // A header that declares more voxels than memory holds: an error for this url, not a crash.
-      failures += "\n  " + u + ": out of memory while reading the volume (its header declares more data than fits)";
+      failed.push_back(u + ": out of memory while reading the volume (its header declares more data than fits)");
+      failures += "\n  " + failed.back();
     }
   }
   sink.error(location(), "VolumeObject could not load any of its urls:" + failures);
+}
+
+glm::dvec3 VolumeObject::size() const {
+  return volume_ ? glm::dvec3(volume_->dims()) * volume_->voxelSize() : glm::dvec3(0.0);
+}
+
+double VolumeObject::voxelEdge() const {
+  if (!volume_) return 0.0;
+  const glm::dvec3 v = volume_->voxelSize();
+  return std::min({v.x, v.y, v.z});
 }
 
 PointShell& VolumeObject::pointShell(int scale) {

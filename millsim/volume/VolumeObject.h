@@ -22,7 +22,8 @@ public:
 
   MFString url{this, "url", Access::InitializeOnly, {"phantom:tooth"},
                "Volume sources, first loadable wins: a .vdb, .nrrd/.nhdr, .mha/.mhd, .vti or .dcm file, a folder "
-               "of DICOM slices, or phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1]."};
+               "of DICOM slices, or phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1] (in an X3D file each & is written "
+               "&amp;)."};
   SFFloat isoValue{this, "isoValue", Access::InitializeOnly, 700.f,
                    "Density above which a point is inside the object (Hounsfield-like units).", Range::closed(-1e9, 1e9)};
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
@@ -39,6 +40,10 @@ public:
   VoxelVolume* volume() { return volume_.get(); }
   const VoxelVolume* volume() const { return volume_.get(); }
   const std::string& format() const { return format_; }
+  // The volume's extent in its local frame (m): dimensions x voxel size; zero until loaded.
+  glm::dvec3 size() const;
+  // The smallest voxel edge (m); zero until loaded.
+  double voxelEdge() const;
   // The point shell at an integer scale, built on first request.
   PointShell& pointShell(int scale);
   bool hasPointShell(int scale) const { return shells_.count(scale) != 0; }

@@ -24,6 +24,7 @@
 #include <vtkType.h>
 #include <vtkXMLImageDataReader.h>
 
+#include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VtkReading.h"
 
@@ -43,14 +44,23 @@ using vtkio::VtkMessages;
 VoxelVolume readVti(const fs::path& file, float airValue) {
   const std::string name = file.string();
   requireFile(file, "a .vti file");
+  std::streamoff fileBytes = 0;
+  bool compressed = false;
   {
     // VTK XML files start with "<?xml" or "<VTKFile" (after an optional byte-order mark and spaces).
     std::ifstream in(file, std::ios::binary);
-    std::string head(64, '\0');
+    std::string head(4096, '\0');
     in.read(head.data(), std::streamsize(head.size()));
     head.resize(std::size_t(in.gcount()));
     if (head.rfind("\xEF\xBB\xBF", 0) == 0) head = head.substr(3);
     head = trim(head);
+    // A compressor on the <VTKFile> element (zlib, LZ4 or LZMA) compresses every array.
+    const std::size_t root = head.find("<VTKFile");
+    if (root != std::string::npos) {
+      const std::size_t rootEnd = head.find('>', root);
+      compressed = head.substr(root, rootEnd == std::string::npos ? std::string::npos : rootEnd - root)
+                       .find("compressor=") != std::string::npos;
+    }
     if (head.rfind("<?xml", 0) != 0 && head.rfind("<VTKFile", 0) != 0)
       throw VolumeError(name + ": not an XML file (a .vti file starts with '<?xml' or '<VTKFile')");
     // VTK parses the XML only up to <AppendedData>, so a file cut inside appended raw data
@@ -58,6 +68,7 @@ VoxelVolume readVti(const fs::path& file, float airValue) {
     in.clear();
     in.seekg(0, std::ios::end);
     const std::streamoff size = in.tellg();
+    fileBytes = size;
     const std::streamoff tail = std::min<std::streamoff>(size, 256);
     std::string end(std::size_t(tail), '\0');
     in.seekg(size - tail);
@@ -96,6 +107,23 @@ VoxelVolume readVti(const fs::path& file, float airValue) {
   checkVolumeShape(name, dims, spacing);  // before VTK allocates the data
   if (reader->GetNumberOfPointArrays() == 0)
     throw VolumeError(name + ": no point data arrays (cell data is not supported: values must be on the voxels)");
+  {
+    // VTK allocates every point array (up to 8 bytes a value) before it reads
+    // one. Each value takes at least a byte in the file (raw, base64 or ascii
+    // "0 "), or 1/kMaxDeflateRatio of one compressed (zlib's bound; LZ4's is
+    // lower, LZMA's higher only for near-constant data), so a small file that
+    // declares a huge extent is refused here, before that allocation.
+    const std::uintmax_t values = std::uintmax_t(dims.x) * std::uintmax_t(dims.y) * std::uintmax_t(dims.z) *
+                                  std::uintmax_t(reader->GetNumberOfPointArrays());
+    const std::uintmax_t have = std::uintmax_t(std::max<std::streamoff>(fileBytes, 0));
+    if (compressed ? deflateCannotHold(have, values) : have < values)
+      throw VolumeError(name + ": header/size mismatch: WholeExtent declares " + std::to_string(dims.x) + "x" +
+                        std::to_string(dims.y) + "x" + std::to_string(dims.z) + " voxels in " +
+                        std::to_string(reader->GetNumberOfPointArrays()) + " point data array(s), at least " +
+                        (compressed ? std::to_string(values / kMaxDeflateRatio) + " bytes compressed"
+                                    : std::to_string(values) + " bytes") +
+                        "; the file has " + std::to_string(have));
+  }
 
   reader->Update();
   if (!messages.text.empty()) throw VolumeError(name + ": " + messages.text);

@@ -75,6 +75,9 @@ public:
     if (!canonical.empty()) inlineStack_.push_back(canonical);
     Document doc{SourceText(std::move(label), std::move(text)), nullptr, std::move(dir), &scene_->defs};
     if (parseXml(doc)) readTopLevel(doc, scene_->root->children, true);
+    // Whole-scene checks (NodeRegistry::addSceneCheck) need a scene whose nodes all loaded.
+    if (!sink_.hasErrors())
+      for (SceneCheck check : scene_->registry.sceneChecks()) check(*scene_, sink_);
     for (auto& d : sink_.all())
       if (d.severity == Severity::Error) return {nullptr, sink_.take()};
     return {std::move(scene_), sink_.take()};
@@ -100,6 +103,13 @@ private:
       if (e->code == XML_ERR_INTERNAL_ERROR && c->message.rfind("Excessive depth in document", 0) == 0)
         c->message = "elements nest deeper than 256 levels, the most MillSim reads (libxml2's limit); "
                      "flatten the scene, e.g. fewer nested Transforms or Groups";
+      // A bare '&' (as in phantom:tooth?size=...&voxel=...) starts an entity reference in XML.
+      const bool entityRef = e->code == XML_ERR_ENTITYREF_SEMICOL_MISSING || e->code == XML_ERR_UNDECLARED_ENTITY ||
+                             e->code == XML_WAR_UNDECLARED_ENTITY ||
+                             (e->code == XML_ERR_NAME_REQUIRED && c->message.find("EntityRef") != std::string::npos);
+      if (entityRef)
+        c->message += " (an '&' in an attribute must be written '&amp;' in XML, e.g. "
+                      "url='\"phantom:tooth?size=64,64,64&amp;voxel=0.0004\"')";
     };
     const std::string& text = doc.src.text();
     if (isBlank(text)) {
@@ -505,6 +515,13 @@ private:
         }
       std::string text;
       if (!readFile(p, text, loc)) return;
+      // A fallback url is used: say why each earlier one was not.
+      for (std::size_t at = tried.find("\n  "); at != std::string::npos;) {
+        const std::size_t next = tried.find("\n  ", at + 3);
+        sink_.note(loc, "Inline url failed, a later one was used: " +
+                            tried.substr(at + 3, next == std::string::npos ? std::string::npos : next - at - 3));
+        at = next;
+      }
       inlineStack_.push_back(canonical);
       std::map<std::string, std::shared_ptr<Node>, std::less<>> privateDefs;
       Document sub{SourceText(p.string(), std::move(text)), nullptr, p.parent_path(), &privateDefs};

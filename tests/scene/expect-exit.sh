@@ -13,9 +13,12 @@
 #                   and be non-empty
 #   --max-memory MB the command runs with its address space capped at MB
 #                   megabytes (ulimit -v): a runaway allocation fails inside it
+#   --max-seconds S the command is stopped after S seconds (timeout) and the
+#                   test fails, saying so
 # Files are removed first so that a stale file from an earlier run cannot pass.
 patterns=''
 maxmem=''
+maxsecs=''
 rows=''
 files=''
 nl='
@@ -26,10 +29,11 @@ while :; do
     --rows) rows="$rows$2$nl$3$nl"; shift 3 ;;
     --file) files="$files$2$nl"; shift 2 ;;
     --max-memory) maxmem=$2; shift 2 ;;
+    --max-seconds) maxsecs=$2; shift 2 ;;
     *) break ;;
   esac
 done
-if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [--rows FILE N] [--file FILE] [--max-memory MB] CODE PATTERN COMMAND..."; exit 1; fi
+if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [--rows FILE N] [--file FILE] [--max-memory MB] [--max-seconds S] CODE PATTERN COMMAND..."; exit 1; fi
 code=$1
 patterns="$2$nl$patterns"
 shift 2
@@ -37,6 +41,7 @@ shift 2
 printf '%s' "$files" | while IFS= read -r f; do rm -f -- "$f"; done
 printf '%s' "$rows" | awk 'NR % 2 == 1' | while IFS= read -r f; do rm -f -- "$f"; done
 
+if [ -n "$maxsecs" ]; then set -- timeout -k 2 "$maxsecs" "$@"; fi
 if [ -n "$maxmem" ]; then
   out=$(ulimit -v $((maxmem * 1024)) && "$@" 2>&1)
 else
@@ -45,6 +50,9 @@ fi
 rc=$?
 printf '%s\n' "$out"
 failed=0
+if [ -n "$maxsecs" ] && { [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; }; then
+  echo "expect-exit: still running after $maxsecs s (the limit); stopped"; failed=1
+fi
 if [ "$rc" -ne "$code" ]; then echo "expect-exit: exit code $rc, expected $code"; failed=1; fi
 while IFS= read -r p; do
   [ -z "$p" ] && continue

@@ -113,8 +113,12 @@ TEST(FieldRanges, ValuesJustOutsideTheRangeNaNAndInfinityAreRefused) {
         EXPECT_TRUE(refused(*f, repeated("inf", n))) << where << " accepts infinity";
       }
       // Inside the range both ends are accepted (a bound that is too tight would refuse real scenes).
-      if (!r->loOpen) EXPECT_FALSE(refused(*f, repeated(number(r->lo, isInt), n))) << where << " refuses its lower bound";
-      if (!r->hiOpen) EXPECT_FALSE(refused(*f, repeated(number(r->hi, isInt), n))) << where << " refuses its upper bound";
+      if (!r->loOpen) {
+        EXPECT_FALSE(refused(*f, repeated(number(r->lo, isInt), n))) << where << " refuses its lower bound";
+      }
+      if (!r->hiOpen) {
+        EXPECT_FALSE(refused(*f, repeated(number(r->hi, isInt), n))) << where << " refuses its upper bound";
+      }
     }
   }
 }

@@ -87,6 +87,19 @@ TEST(Trajectory, MalformedFilesNameTheLine) {
   EXPECT_THROW(Trajectory::load("/nonexistent/t.csv"), TrajectoryError);
 }
 
+// Issue 16: spreadsheets write a UTF-8 byte-order mark; extra columns are refused, not dropped.
+TEST(Trajectory, AcceptsAByteOrderMarkAndRefusesUnknownColumns) {
+  const auto t = Trajectory::parse("\xEF\xBB\xBF" + kHeader + "0,0,0,0,1,0,0,0,0\r\n", "bom.csv");
+  EXPECT_EQ(t.samples().size(), 1u);
+  EXPECT_NE(errorOf("t,x,y,z,qw,qx,qy,qz,button,force\n0,0,0,0,1,0,0,0,0,1\n")
+                .find("t.csv:1: expected the header 't,x,y,z,qw,qx,qy,qz,button', found "
+                      "'t,x,y,z,qw,qx,qy,qz,button,force': unknown column 'force' (column 10); the accepted columns "
+                      "are t,x,y,z,qw,qx,qy,qz,button, in this order"),
+            std::string::npos);
+  EXPECT_NE(errorOf("t,y,x,z,qw,qx,qy,qz,button\n").find("column 2 is 'y', expected 'x'"), std::string::npos);
+  EXPECT_NE(errorOf(kHeader + "0,0,0,0,1,0,0,0,0,7\n").find("t.csv:2: expected 9 columns"), std::string::npos);
+}
+
 TEST(Replay, IsByteIdenticalRunToRun) {
   const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
   const std::string a = replayToString(scene, "");

@@ -43,3 +43,92 @@ with open(replace(os.path.join(out, "bomb.nrrd")), "wb") as f:
     f.write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1024 1024 1024\nspacings: 0.1 0.1 0.1\nencoding: gzip\n\n")
     f.write(gzip.compress(bytes(1000)))
 scene("gzip-bomb", "bomb.nrrd")
+
+
+# Headers that never end, or whose one line never ends (issue 16, part 1):
+# each reader stops after 1 MiB of header and names the file and the limit.
+def endless(name, head, line):
+    with open(replace(os.path.join(out, name)), "wb") as f:
+        f.write(head)
+        f.write(line * ((2 << 20) // len(line)))  # 2 MiB of header lines and no end
+
+
+def endless_line(name, head):
+    # 1 GB with no newline after `head`; sparse, so it costs no disk.
+    with open(replace(os.path.join(out, name)), "wb") as f:
+        f.write(head)
+        f.truncate(1 << 30)
+
+
+endless("endless.nrrd", b"NRRD0004\n", b"# no blank line ends this header\n")
+scene("nrrd-endless-header", "endless.nrrd")
+endless_line("long-line.nrrd", b"NRRD0004\ntype: ")
+scene("nrrd-long-line", "long-line.nrrd")
+endless("endless.mha", b"ObjectType = Image\nNDims = 3\n", b"Comment = no ElementDataFile ends this header\n")
+scene("mha-endless-header", "endless.mha")
+endless_line("long-line.mha", b"ObjectType = Image\nNDims = ")
+scene("mha-long-line", "long-line.mha")
+
+# Declared sizes far beyond the data (part 1): refused before anything that size is allocated.
+mha = (b"ObjectType = Image\nNDims = 3\nDimSize = 1024 1024 1024\nElementSpacing = 0.1 0.1 0.1\n"
+       b"ElementType = MET_FLOAT\n")
+with open(replace(os.path.join(out, "huge.mha")), "wb") as f:
+    f.write(mha + b"ElementDataFile = LOCAL\n" + bytes(1000))
+scene("mha-huge-dims", "huge.mha")
+packed = gzip.compress(bytes(1000))
+with open(replace(os.path.join(out, "bomb.mha")), "wb") as f:
+    f.write(mha + b"CompressedData = True\nCompressedDataSize = " + str(len(packed)).encode() +
+            b"\nElementDataFile = LOCAL\n" + packed)
+scene("mha-zlib-bomb", "bomb.mha")
+
+
+def vti(name, compressor):
+    with open(replace(os.path.join(out, name)), "w") as f:
+        f.write(f"""<?xml version="1.0"?>
+<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian"{compressor}>
+  <ImageData WholeExtent="0 1023 0 1023 0 1023" Origin="0 0 0" Spacing="0.1 0.1 0.1">
+    <Piece Extent="0 1023 0 1023 0 1023">
+      <PointData Scalars="density">
+        <DataArray type="Float32" Name="density" format="ascii">0 0 0 0</DataArray>
+      </PointData>
+    </Piece>
+  </ImageData>
+</VTKFile>
+""")
+
+
+vti("huge.vti", "")
+scene("vti-huge-extent", "huge.vti")
+vti("bomb.vti", ' compressor="vtkZLibDataCompressor"')
+scene("vti-zlib-bomb", "bomb.vti")
+
+# A CT slice whose Rows x Columns (30000 x 30000 x 16 bits, 1.8 GB) is far
+# more than the 200 bytes of Pixel Data it holds. Built from pydicom's CT_small.dcm.
+import pydicom  # noqa: E402  (Debian: python3-pydicom)
+from pydicom.data import get_testdata_file  # noqa: E402
+
+ds = pydicom.dcmread(get_testdata_file("CT_small.dcm"))
+ds.Rows = 30000
+ds.Columns = 30000
+ds.PixelData = bytes(200)
+ds.save_as(replace(os.path.join(out, "huge.dcm")))
+scene("dcm-huge-rows", "huge.dcm")
+
+
+# Trajectory urls that are a FIFO or /dev/zero: a clear error, not a hang.
+def device_scene(name, url):
+    with open(os.path.join(out, name + ".x3d"), "w") as f:
+        f.write(f"""<?xml version="1.0" encoding="UTF-8"?>
+<X3D profile="Immersive" version="3.3">
+  <Scene>
+    <VolumeObject url='"phantom:tooth?size=16,16,12"'/>
+    <HandDevice url='"{url}"'><MillTool/><SurfacePointRenderer/></HandDevice>
+  </Scene>
+</X3D>
+""")
+
+
+os.mkfifo(replace(os.path.join(out, "fifo.csv")))
+device_scene("trajectory-fifo", "fifo.csv")
+os.symlink("/dev/zero", replace(os.path.join(out, "zero.csv")))
+device_scene("trajectory-zero", "zero.csv")

@@ -1,0 +1,114 @@
+#include "millsim/devices/DeviceChecks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/core/Scene.h"
+#include "millsim/devices/HapticsDevice.h"
+#include "millsim/std/Transform.h"
+#include "millsim/volume/PlacedVolumes.h"
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/VolumeObject.h"
+
+namespace millsim {
+
+namespace {
+
+struct FoundDevice {
+  HapticsDevice* device;
+  const Transform* transform;  // the innermost Transform around it, or null
+};
+
+std::string describe(const Node& n) {
+  return n.typeName() + (n.defName().empty() ? std::string() : " '" + n.defName() + "'") + " at " +
+         n.location().str();
+}
+
+void findDevices(Node& n, const Transform* around, std::vector<FoundDevice>& out) {
+  if (auto* d = dynamic_cast<HapticsDevice*>(&n)) {
+    const bool seen = std::any_of(out.begin(), out.end(), [&](const FoundDevice& f) { return f.device == d; });
+    if (!seen) out.push_back({d, around});
+    else if (around)
+      for (auto& f : out)
+        if (f.device == d && !f.transform) f.transform = around;  // a USE of it inside a Transform
+    return;  // a device's own node fields hold its tool and renderer, never another device
+  }
+  if (auto* t = dynamic_cast<const Transform*>(&n)) around = t;
+  for (Field* f : n.fields())
+    if (auto* nf = dynamic_cast<NodeFieldBase*>(f))
+      for (const auto& child : nf->nodes()) findDevices(*child, around, out);
+}
+
+std::string mm(double metres) { return formatNumber(std::round(metres * 1e4) / 10.0); }
+
+}  // namespace
+
+void checkDevices(const Scene& scene, DiagnosticSink& sink) {
+  std::vector<FoundDevice> devices;
+  findDevices(*scene.root, nullptr, devices);
+  if (devices.empty()) return;
+
+  // One device per scene: the run drives one haptic thread and one device.
+  if (devices.size() > 1) {
+    std::string others;
+    for (std::size_t i = 1; i < devices.size(); ++i) others += (i > 1 ? ", " : "") + describe(*devices[i].device);
+    sink.error(devices[1].device->location(),
+               "the scene has " + std::to_string(devices.size()) + " devices (" + describe(*devices[0].device) +
+                   ", then " + others + "); MillSim runs one device per scene: keep one, or put each in its own scene");
+  }
+  for (const FoundDevice& f : devices)
+    if (f.transform)
+      sink.error(f.device->location(),
+                 f.device->typeName() + " is inside the " + describe(*f.transform) +
+                     "; a device is not placed by Transforms (its poses are world coordinates): move it out of the "
+                     "Transform and use positionCalibration/orientationCalibration to offset it");
+
+  // The burr against every volume: a burr larger than the volume is almost
+  // always a unit mistake (tipRadius is in metres; file spacings in millimetres).
+  const HapticsDevice& device = *devices[0].device;
+  MillTool defaultTool;
+  const MillTool& tool = device.tool.get() ? *device.tool.get() : defaultTool;
+  const double burr = 2.0 * tool.tipRadius.get();
+  const std::vector<PlacedVolume> volumes = placedVolumes(scene);
+  for (const PlacedVolume& v : volumes) {
+    const glm::dvec3 local = v.node->size();
+    glm::dvec3 world;
+    for (int a = 0; a < 3; ++a) world[a] = local[a] * glm::length(glm::dvec3(v.localToWorld[a]));
+    const double smallest = std::min({world.x, world.y, world.z});
+    if (!(burr > smallest)) continue;
+    sink.warning(device.tool.get() ? tool.location() : device.location(),
+                 "the burr (" + std::string(device.tool.get() ? "" : "the default MillTool's ") + "tipRadius " +
+                     formatNumber(tool.tipRadius.get()) + " m, " + mm(burr) + " mm across) is larger than the " +
+                     describe(*v.node) + " (" + mm(world.x) + " x " + mm(world.y) + " x " + mm(world.z) +
+                     " mm); check tipRadius (metres) and the volume's voxel size (millimetres in files)");
+  }
+
+  // The renderer's estimated frame cost against the device's frame budget.
+  const HapticsRendererNode* renderer = device.hapticsRenderer.get().get();
+  if (!renderer) return;
+  FrameCostContext context;
+  context.tool = tool.geometry();
+  for (const PlacedVolume& v : volumes) {
+    const double edge = v.node->voxelEdge();
+    if (edge > 0.0 && (context.voxelSize == 0.0 || edge < context.voxelSize)) context.voxelSize = edge;
+  }
+  context.shellPoints = [&volumes](int scale) {
+    std::size_t n = 0;
+    for (const PlacedVolume& v : volumes) n += v.node->pointShell(scale).size();
+    return n;
+  };
+  const FrameCostEstimate cost = renderer->estimateFrameCost(context);
+  const double budget = 1.0 / double(device.desiredHapticsRate.get());
+  if (cost.seconds > budget)
+    sink.warning(renderer->location(),
+                 renderer->typeName() + " cannot keep up with " + device.typeName() + "'s desiredHapticsRate " +
+                     std::to_string(device.desiredHapticsRate.get()) + " Hz: its estimated frame cost is " +
+                     formatNumber(std::round(cost.seconds * 1e7) / 10.0) + " us (" + cost.model +
+                     "), over the frame budget of " + formatNumber(std::round(budget * 1e7) / 10.0) +
+                     " us; " + cost.advice + ", or lower desiredHapticsRate");
+}
+
+}  // namespace millsim
