@@ -69,48 +69,14 @@ void RunGraphics::run() {
   }
   state_.store(1, std::memory_order_release);
 
-  FrameTimer all, updates;
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.rate));
-  auto next = Clock::now();
-  auto frame = [&] {
-    const auto t0 = Clock::now();
-    bool changed = false;
-    for (std::size_t i = 0; i < replicas_.size(); ++i) {
-      const auto& blocks = replicas_[i]->apply(*channels_[i]);
-      if (!blocks.empty()) {
-        renderer->volumeChanged(i, blocks);
-        changed = true;
-      }
-    }
-    const FrameRecord& f = loop_.newest().read();
-    renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(tool_, f.out)) : std::nullopt);
-    renderer->readPixels();  // finish the frame, as a display copy would
-    if (stats_.firstFrameSeconds == 0.0)
-      stats_.firstFrameSeconds = std::chrono::duration<double>(Clock::now() - startTime_).count();
-    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-    all.add(s);
-    if (changed) updates.add(s);
-  };
-  while (!stop_.load(std::memory_order_acquire)) {
-    frame();
-    next += period;
-    const auto now = Clock::now();
-    if (next < now) next = now;  // behind: draw again at once, never queue frames
-    std::this_thread::sleep_until(next);
-  }
-  frame();  // the final state, after the haptic loop ended
-  if (!options_.screenshot.empty()) {
-    try {
-      loadGraphicsModule().writePng(renderer->readPixels(), options_.screenshot);
-    } catch (const std::exception& e) {
-      error_ = e.what();
-    }
-  }
-  stats_.frames = long(all.count());
-  stats_.meanMs = all.mean() * 1e3;
-  stats_.p95Ms = all.p95() * 1e3;
-  stats_.updateFrames = long(updates.count());
-  stats_.meanUpdateMs = updates.mean() * 1e3;
+  paceFrames(
+      [&](std::size_t i, const std::vector<BlockOrigin>& blocks) { renderer->volumeChanged(i, blocks); },
+      [&] {
+        const FrameRecord& f = loop_.newest().read();
+        renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(tool_, f.out)) : std::nullopt);
+        renderer->readPixels();  // finish the frame, as a display copy would
+      },
+      [&] { return renderer->readPixels(); });
 }
 
 void RunGraphics::runWindow() {
@@ -140,39 +106,47 @@ void RunGraphics::runWindow() {
   }
   state_.store(1, std::memory_order_release);
 
+  paceFrames([&](std::size_t i, const std::vector<BlockOrigin>& blocks) { window->volumeChanged(i, blocks); },
+             [&] {
+               if (!window->pollEvents()) options_.controls->close();
+               options_.controls->post(window->takeCommands());
+               if (auto cuts = options_.controls->takeSceneCuts()) window->sceneCutsChanged(*cuts);
+               if (options_.pointer) {
+                 const PointerState p = window->pointer();
+                 options_.pointer->set(p.pose, p.button);
+               }
+               const FrameRecord& f = loop_.newest().read();
+               std::vector<ToolView> tools;
+               if (f.frame > 0 || f.t > 0.0) {
+                 tools.push_back(toolView(tool_, f.out));
+                 if (options_.pointer)  // the mouse's own pose, where the renderer's tool is held back
+                   tools.push_back(ToolView{tool_, f.device, false, glm::dvec3(0.0), true});
+               }
+               window->draw(tools, options_.controls->hud());
+               if (options_.stallMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(options_.stallMs));
+             },
+             [&] { return window->readPixels(); });
+  window.reset();  // closes the window on its own thread
+}
+
+void RunGraphics::paceFrames(const std::function<void(std::size_t, const std::vector<BlockOrigin>&)>& volumeChanged,
+                             const std::function<void()>& drawFrame, const std::function<Image()>& screenshot) {
   FrameTimer all, updates;
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.rate));
   auto next = Clock::now();
   auto frame = [&] {
     const auto t0 = Clock::now();
-    if (!window->pollEvents()) options_.controls->close();
-    options_.controls->post(window->takeCommands());
-    if (auto cuts = options_.controls->takeSceneCuts()) window->sceneCutsChanged(*cuts);
-    if (options_.pointer) {
-      const PointerState p = window->pointer();
-      options_.pointer->set(p.pose, p.button);
-    }
     bool changed = false;
     for (std::size_t i = 0; i < replicas_.size(); ++i) {
       const auto& blocks = replicas_[i]->apply(*channels_[i]);
       if (!blocks.empty()) {
-        window->volumeChanged(i, blocks);
+        volumeChanged(i, blocks);
         changed = true;
       }
     }
-    const FrameRecord& f = loop_.newest().read();
-    std::vector<ToolView> tools;
-    if (f.frame > 0 || f.t > 0.0) {
-      tools.push_back(toolView(tool_, f.out));
-      if (options_.pointer) {  // the mouse's own pose, where the renderer's tool is held back
-        ToolView ghost{tool_, f.device, false, glm::dvec3(0.0), true};
-        tools.push_back(ghost);
-      }
-    }
-    window->draw(tools, options_.controls->hud());
+    drawFrame();
     if (stats_.firstFrameSeconds == 0.0)
       stats_.firstFrameSeconds = std::chrono::duration<double>(Clock::now() - startTime_).count();
-    if (options_.stallMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(options_.stallMs));
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
     all.add(s);
     if (changed) updates.add(s);
@@ -181,13 +155,13 @@ void RunGraphics::runWindow() {
     frame();
     next += period;
     const auto now = Clock::now();
-    if (next < now) next = now;
+    if (next < now) next = now;  // behind: draw again at once, never queue frames
     std::this_thread::sleep_until(next);
   }
-  frame();
+  frame();  // the final state, after the haptic loop ended
   if (!options_.screenshot.empty()) {
     try {
-      loadGraphicsModule().writePng(window->readPixels(), options_.screenshot);
+      loadGraphicsModule().writePng(screenshot(), options_.screenshot);
     } catch (const std::exception& e) {
       error_ = e.what();
     }
@@ -197,7 +171,6 @@ void RunGraphics::runWindow() {
   stats_.p95Ms = all.p95() * 1e3;
   stats_.updateFrames = long(updates.count());
   stats_.meanUpdateMs = updates.mean() * 1e3;
-  window.reset();  // closes the window on its own thread
 }
 
 RunGraphicsStats RunGraphics::stop() {

@@ -10,14 +10,17 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "millsim/devices/MouseDevice.h"
+#include "millsim/graphics/Image.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/run/HapticLoop.h"
+#include "millsim/volume/DirtyBlocks.h"
 
 namespace millsim {
 class BlockChannel;
@@ -75,6 +78,11 @@ public:
 private:
   void run();
   void runWindow();
+  // Both paths' frame loop: applies milled blocks (volumeChanged), draws at
+  // options_.rate until stop(), draws the final state, writes the screenshot
+  // and fills the frame statistics.
+  void paceFrames(const std::function<void(std::size_t, const std::vector<BlockOrigin>&)>& volumeChanged,
+                  const std::function<void()>& drawFrame, const std::function<Image()>& screenshot);
 
   const Scene& scene_;
   VoxelScene& haptic_;

@@ -1,44 +1,22 @@
 // loadAudioModule() (AudioModule.h). Part of libmillsim, which only dlopens
 // the audio library: it never links it or SDL2.
-#include <dlfcn.h>
-
-#include <cstdlib>
-#include <filesystem>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 
 #include "millsim/audio/AudioModule.h"
+#include "millsim/core/SiblingLibrary.h"
 
 namespace millsim {
 
 namespace {
 
-std::filesystem::path ownFolder() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&loadAudioModule), &info) && info.dli_fname)
-    return std::filesystem::path(info.dli_fname).parent_path();
-  return {};
-}
-
 const AudioModule* open(std::string& error) {
-  std::filesystem::path library;
-  if (const char* env = std::getenv("MILLSIM_AUDIO_LIBRARY"); env && *env)
-    library = env;
-  else
-    library = ownFolder() / "libmillsim_audio.so";
-  void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) {
-    const char* why = dlerror();
-    error = "cannot load the audio library " + library.string() + ": " + (why ? why : "unknown error") +
-            " (live sound needs SDL2: Debian package libsdl2-2.0-0)";
-    return nullptr;
-  }
-  using Entry = const AudioModule* (*)();
-  auto entry = reinterpret_cast<Entry>(dlsym(handle, "millsim_audio_module"));
-  const AudioModule* module = entry ? entry() : nullptr;
-  if (!module || module->abiVersion != kAudioAbiVersion) {
-    error = library.string() + " is not a MillSim audio library of ABI version " + std::to_string(kAudioAbiVersion);
+  const auto* module = static_cast<const AudioModule*>(
+      openSiblingLibrary("libmillsim_audio.so", "MILLSIM_AUDIO_LIBRARY", "millsim_audio_module", "audio",
+                         "live sound needs SDL2: Debian package libsdl2-2.0-0", error));
+  if (module && module->abiVersion != kAudioAbiVersion) {
+    error = "the audio library is not of MillSim audio ABI version " + std::to_string(kAudioAbiVersion);
     return nullptr;
   }
   return module;  // the library stays loaded for the life of the process

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "millsim/graphics/GraphicsError.h"
-#include "millsim/graphics/SiblingLibrary.h"
+#include "millsim/core/SiblingLibrary.h"
 #include "millsim/window/WindowModule.h"
 
 namespace millsim {

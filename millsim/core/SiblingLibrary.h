@@ -1,7 +1,8 @@
 #pragma once
-// Opening one of MillSim's optional libraries (graphics, window) that sit next
-// to libmillsim: dlopen, look up its entry point, and say in one sentence why
-// not. Shared by loadGraphicsModule() and loadWindowModule().
+// Opening one of MillSim's optional libraries (graphics, window, audio) that
+// sit next to libmillsim: dlopen, look up its entry point, and say in one
+// sentence why not. Shared by loadGraphicsModule(), loadWindowModule() and
+// loadAudioModule().
 #include <string>
 
 namespace millsim {

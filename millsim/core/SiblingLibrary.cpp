@@ -1,0 +1,44 @@
+// openSiblingLibrary() (SiblingLibrary.h).
+#include "millsim/core/SiblingLibrary.h"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace millsim {
+
+namespace {
+
+// The folder this library (libmillsim) was loaded from.
+std::filesystem::path ownFolder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&openSiblingLibrary), &info) && info.dli_fname)
+    return std::filesystem::path(info.dli_fname).parent_path();
+  return {};
+}
+
+}  // namespace
+
+const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, const char* what,
+                               const char* hint, std::string& error) {
+  std::filesystem::path library;
+  if (const char* env = std::getenv(overrideVar); env && *env)
+    library = env;
+  else
+    library = ownFolder() / fileName;
+  void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* why = dlerror();
+    error = std::string("cannot load the ") + what + " library " + library.string() + ": " +
+            (why ? why : "unknown error") + " (" + hint + ")";
+    return nullptr;
+  }
+  using Entry = const void* (*)();
+  auto function = reinterpret_cast<Entry>(dlsym(handle, entry));
+  const void* module = function ? function() : nullptr;
+  if (!module) error = library.string() + " is not a MillSim " + what + " library (no " + entry + ")";
+  return module;
+}
+
+}  // namespace millsim
