@@ -1,11 +1,13 @@
 // millsim replay SCENE.x3d --trajectory T.csv --log LOG.csv: steps the scene's
-// device renderer open-loop through a trajectory in simulated time.
+// device renderer open-loop through a trajectory in simulated time; given a
+// run's log instead, it steps through that run's recorded frames (review).
 // --sound-out writes the milling sound in the same simulated time, so it too is
 // the same bytes on every run.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "Commands.h"
 #include "ImageArgs.h"
@@ -25,7 +27,10 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
-  cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV: t,x,y,z,qw,qx,qy,qz,button")->required();
+  cmd->add_option("--trajectory", args->trajectory,
+                  "Trajectory CSV (t,x,y,z,qw,qx,qy,qz,button), or the --log of a `millsim run` to review that run "
+                  "frame by frame")
+      ->required();
   cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame)");
   cmd->add_option("--sound-out", args->soundOut, "WAV file of the milling sound (16-bit PCM mono, the replay's length)");
   cmd->add_option("--renderer", args->options.renderer,
@@ -45,7 +50,14 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
-      const Trajectory trajectory = Trajectory::load(args->trajectory);
+      // A trajectory, or a run's frame log: that replays the run's own frames (review).
+      const std::string text = readTrajectoryText(args->trajectory);
+      std::optional<RecordedRun> recorded;
+      std::optional<Trajectory> trajectory;
+      if (RecordedRun::isFrameLog(text))
+        recorded = RecordedRun::parse(text, args->trajectory);
+      else
+        trajectory = Trajectory::parse(text, args->trajectory);
       std::ofstream log;
       if (!args->log.empty()) {
         log.open(args->log, std::ios::binary);
@@ -60,7 +72,12 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
           if (sound->pendingSamples() >= (1u << 16)) sound->flush();
         };
       }
-      const ReplaySummary s = replay(*r.scene, trajectory, args->log.empty() ? nullptr : &log, options);
+      std::ostream* logOut = args->log.empty() ? nullptr : &log;
+      if (recorded)
+        std::cout << "replaying a recorded run: " << recorded->frames().size() << " frames from "
+                  << args->trajectory << "\n";
+      const ReplaySummary s = recorded ? replayRecorded(*r.scene, *recorded, logOut, options)
+                                       : replay(*r.scene, *trajectory, logOut, options);
       if (sound) sound->finish(double(s.frames) / s.rate);  // frames at n / rate, each one period long
       log.close();
       if (!args->log.empty() && !log) throw std::runtime_error(args->log + ": writing the log failed");

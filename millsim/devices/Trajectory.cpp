@@ -5,9 +5,10 @@
 #include <cstdint>
 #include <cmath>
 #include <fstream>
-#include <sstream>
+#include <iterator>
 
 #include "millsim/core/FieldValues.h"
+#include "millsim/devices/RecordedRun.h"
 
 namespace millsim {
 
@@ -35,7 +36,7 @@ Trajectory::Trajectory(std::vector<TrajectorySample> samples) : samples_(std::mo
   if (samples_.empty()) throw TrajectoryError("a trajectory needs at least one row");
 }
 
-Trajectory Trajectory::load(const std::filesystem::path& file) {
+std::string readTrajectoryText(const std::filesystem::path& file) {
   // Reading a FIFO would wait forever and a device such as /dev/zero never
   // ends; a file past kMaxBytes cannot hold a valid trajectory's rows anyway.
   std::error_code ec;
@@ -53,24 +54,42 @@ Trajectory Trajectory::load(const std::filesystem::path& file) {
                           std::to_string(kMaxBytes) + " bytes are refused");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw TrajectoryError(file.string() + ": cannot open the trajectory file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), file.string());
+  std::string text;
+  in.seekg(0, std::ios::end);
+  if (const std::streamoff size = in.tellg(); size > 0) text.reserve(std::size_t(size));
+  in.seekg(0);
+  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return text;
+}
+
+Trajectory Trajectory::load(const std::filesystem::path& file) {
+  return parse(readTrajectoryText(file), file.string());
 }
 
 Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
   std::vector<TrajectorySample> rows;
+  // A run's frame log is a trajectory too: the device poses and the button it recorded.
+  if (RecordedRun::isFrameLog(text)) {
+    const RecordedRun run = RecordedRun::parse(text, file);
+    rows.reserve(run.frames().size());
+    for (const RecordedFrame& f : run.frames())
+      rows.push_back(TrajectorySample{f.t, Pose{f.device.position, glm::normalize(f.device.orientation)}, f.button});
+    return Trajectory(std::move(rows));
+  }
   // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
   const bool bom = text.rfind("\xEF\xBB\xBF", 0) == 0;
-  std::istringstream in(bom ? text.substr(3) : text);
-  std::string line;
+  // Lines are views into `text`: a 1 GiB file is not copied again.
+  std::string_view rest(text);
+  if (bom) rest.remove_prefix(3);
   int lineNo = 0;
   bool sawHeader = false;
   const auto expected = splitCsv(kHeader);
-  while (std::getline(in, line)) {
+  while (!rest.empty()) {
+    const std::size_t newline = rest.find('\n');
+    std::string_view l = rest.substr(0, newline);
+    rest = newline == std::string_view::npos ? std::string_view() : rest.substr(newline + 1);
     ++lineNo;
     const std::string where = file + ":" + std::to_string(lineNo) + ": ";
-    std::string_view l = line;
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
     if (l.find_first_not_of(" \t") == std::string_view::npos || l.front() == '#') continue;
     auto cells = splitCsv(l);

@@ -4,7 +4,8 @@
 // t in seconds (strictly increasing), the burr centre in metres (world frame),
 // a unit quaternion (w first), button 0/1 (milling on). Poses between rows are
 // interpolated (linear position, slerp orientation); the button holds the
-// value of the row at or before t.
+// value of the row at or before t. A run's frame log (RecordedRun.h) is read
+// as a trajectory of the poses and button it recorded.
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,10 @@ struct TrajectorySample {
   Pose pose;
   bool button = false;
 };
+
+// The text of a trajectory (or frame log) file: a regular file of at most
+// 1 GiB, so that a FIFO, a device or a huge file is a clear error, not a hang.
+std::string readTrajectoryText(const std::filesystem::path& file);
 
 class Trajectory {
 public:

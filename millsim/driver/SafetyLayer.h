@@ -28,6 +28,8 @@ enum SafetyEvent : std::uint32_t {
   kSafetyWatchdog = 1u << 9,
   kSafetyClamped = 1u << 10,
   kSafetyRamping = 1u << 11,
+  // The loop's last row: the device was stopped and its output zeroed.
+  kSafetyStopped = 1u << 12,
 };
 
 struct SafeWrench {

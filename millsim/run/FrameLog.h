@@ -1,8 +1,9 @@
 #pragma once
 // The frame log: one CSV row per haptic frame, written by replay and by the
-// live loop alike (docs/algorithms.md, "Logs"). The first nine columns are a
-// trajectory (t,x,y,z,qw,qx,qy,qz … button is further on), so a log can be
-// replayed; the rest is what the renderer and the safety layer did.
+// live loop alike (docs/algorithms.md, "Logs"), ending with the stop row. It
+// holds the device pose, button, time and period of every frame, so a log can
+// be replayed frame for frame (millsim/devices/RecordedRun, "Review"); the
+// rest is what the renderer and the safety layer did.
 #include <functional>
 #include <ostream>
 #include <string>

@@ -138,11 +138,6 @@ void HapticLoop::setLive(bool enabled, double forceLimit, double torqueLimit) {
 
 void HapticLoop::frame(double t, double dt, double periodUs) {
   const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
-  if (const std::uint32_t v = liveVersion_.load(std::memory_order_acquire); v != liveSeen_) {
-    liveSeen_ = v;
-    enabled_ = liveEnabled_.load(std::memory_order_relaxed);
-    safety_.setLimits(liveForceLimit_.load(std::memory_order_relaxed), liveTorqueLimit_.load(std::memory_order_relaxed));
-  }
   const DeviceReading reading = driver_->read(t, dt);
   // A missing or corrupt sample keeps the last good pose; the watchdog sees its age.
   if (reading.valid && finitePose(reading.pose)) {
@@ -153,13 +148,34 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
   }
   const Pose device{settings_.calibrationRotation * lastReading_.pose.position + settings_.calibrationOffset,
                     settings_.calibrationRotation * lastReading_.pose.orientation};
+  advance(t, dt, periodUs, device, haveReading_ && lastReading_.button, begin);
+}
+
+void HapticLoop::stepRecorded(double t, double periodUs, const Pose& device, bool button) {
+  const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
+  haveReading_ = true;
+  sampleTime_ = t;
+  advance(t, frameDt(periodUs), periodUs, device, button, begin);
+  stats_.elapsed = t;
+}
+
+double HapticLoop::frameDt(double periodUs) const {
+  return std::clamp(periodUs * 1e-6, 0.25 / settings_.rate, 4.0 / settings_.rate);
+}
+
+void HapticLoop::advance(double t, double dt, double periodUs, const Pose& device, bool button, Clock::time_point begin) {
+  if (const std::uint32_t v = liveVersion_.load(std::memory_order_acquire); v != liveSeen_) {
+    liveSeen_ = v;
+    enabled_ = liveEnabled_.load(std::memory_order_relaxed);
+    safety_.setLimits(liveForceLimit_.load(std::memory_order_relaxed), liveTorqueLimit_.load(std::memory_order_relaxed));
+  }
+  lastDevice_ = device;
   if (nextFrame_ == 0) switch_.current().reset(device);
   if (HapticAlgorithm* next = incoming_.exchange(nullptr, std::memory_order_acq_rel)) {
     currentName_ = incomingName_.load(std::memory_order_relaxed);
     switch_.replace(std::unique_ptr<HapticAlgorithm>(next), device);
   }
 
-  const bool button = haveReading_ && lastReading_.button;
   HapticOutput out = switch_.step(scene_, HapticInput{device, dt, button});
   // Retired algorithms are freed by the scene thread, never here.
   if (!retiredHeld_) retiredHeld_ = switch_.takeRetired();
@@ -195,6 +211,7 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
   r.force = w.force;
   r.torque = w.torque;
   r.out = out;
+  lastOut_ = out;
   r.computeUs = settings_.timing ? microseconds(Clock::now() - begin) : 0.0;
   r.periodUs = periodUs;
   r.removedVolume = stats_.removedVolume;
@@ -242,8 +259,7 @@ void HapticLoop::runRealTime(double duration) {
     if (t > duration) break;
     if (now - deadline > period / 2) ++stats_.missedDeadlines;
     const double periodUs = nextFrame_ == 0 ? microseconds(period) : microseconds(now - previous);
-    // The step integrates over the time that really passed, within reason.
-    const double dt = std::clamp(periodUs * 1e-6, 0.25 / settings_.rate, 4.0 / settings_.rate);
+    const double dt = frameDt(periodUs);
     previous = now;
     try {
       frame(t, dt, periodUs);
@@ -275,6 +291,31 @@ void HapticLoop::finish() {
   stopped_ = true;
   driver_->stop();
   if (failure_.empty() && driver_->failed()) failure_ = driver_->failure();
+  recordStop();
+}
+
+void HapticLoop::recordStop() {
+  if (nextFrame_ == 0) return;  // nothing was ever sent
+  FrameRecord& r = newest_.back();
+  r.frame = nextFrame_++;
+  r.t = stats_.elapsed;
+  r.device = lastDevice_;
+  r.button = false;
+  r.force = glm::dvec3(0.0);
+  r.torque = glm::dvec3(0.0);
+  // The renderer's last state (graphics keep drawing the tool there), with
+  // what the device really got: nothing.
+  r.out = lastOut_;
+  r.out.force = glm::dvec3(0.0);
+  r.out.torque = glm::dvec3(0.0);
+  r.out.flags = kSafetyStopped;
+  r.out.burrCuts = false;
+  r.computeUs = 0.0;
+  r.periodUs = 0.0;
+  r.removedVolume = stats_.removedVolume;
+  r.renderer = currentName_;
+  records_.push(r);
+  newest_.publish();
 }
 
 LoopStats HapticLoop::stats() const {

@@ -17,6 +17,7 @@
 // allocate once running (algorithms retire through a mailbox to be freed on
 // the scene thread).
 #include <atomic>
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <string>
@@ -106,6 +107,15 @@ public:
 
   // Simulated time on this thread: the next frame at t = frame / rate.
   void stepSimulated();
+  // Simulated time on this thread: a frame of a recorded run (RecordedRun),
+  // with the world device pose, button, time and period its log holds. The
+  // driver is written to but not read, and the calibration is not applied
+  // (the log's pose is already calibrated), so the renderer gets exactly the
+  // inputs it got in the run.
+  void stepRecorded(double t, double periodUs, const Pose& device, bool button);
+  // The time step a frame integrates over after `periodUs` of real time:
+  // what really passed, within reason (a quarter to four periods).
+  double frameDt(double periodUs) const;
   // Real time on a new thread, until `duration` seconds have passed, stop()
   // is called, or the device fails. Returns at once.
   void start(double duration);
@@ -144,6 +154,12 @@ public:
 
 private:
   void frame(double t, double dt, double periodUs);
+  // Everything after reading the device: live fields, swap, step, milling,
+  // safety, output, record. `begin` is when the frame started (timing).
+  void advance(double t, double dt, double periodUs, const Pose& device, bool button,
+               std::chrono::steady_clock::time_point begin);
+  // After the device's stop(): logs the zero output it received.
+  void recordStop();
   void runRealTime(double duration);
 
   VoxelScene& scene_;
@@ -154,6 +170,8 @@ private:
   LoopStats stats_;
 
   DeviceReading lastReading_;
+  Pose lastDevice_;        // for the stop row
+  HapticOutput lastOut_;
   bool haveReading_ = false;
   double sampleTime_ = 0.0;
   long nextFrame_ = 0;

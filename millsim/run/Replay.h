@@ -13,6 +13,7 @@
 #include <string>
 
 #include "millsim/core/Scene.h"
+#include "millsim/devices/RecordedRun.h"
 #include "millsim/devices/Trajectory.h"
 #include "millsim/haptics/HapticsRenderer.h"
 #include "millsim/run/RunSetup.h"
@@ -46,5 +47,14 @@ struct ReplaySummary {
 // Throws std::runtime_error with a clear message if the scene has no device,
 // no renderer, or an unknown --renderer type.
 ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* log, const ReplayOptions& options);
+
+// Review: steps the scene through a recorded run's frames (RecordedRun.h) —
+// the device poses, button, times and periods the renderer got, whatever the
+// device was — so the run's forces and milling come out again, bit for bit
+// (docs/algorithms.md, "Review"). The renderer the log names first is used
+// unless options.renderer says otherwise; where the log's renderer column
+// changes, the same swap (with its cross-fade) happens at the same frame.
+// options.rate must be the run's rate for the frame time steps to match.
+ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ostream* log, const ReplayOptions& options);
 
 }  // namespace millsim

@@ -41,6 +41,8 @@
 #include <gdcmTag.h>
 #include <gdcmTrace.h>
 
+#include <zlib.h>
+
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeIO.h"
 
@@ -75,8 +77,12 @@ std::string hex4(unsigned v) {
 // non-images before GDCM parses them (Debian's GDCM asserts on some odd
 // files, e.g. pydicom's DICOMDIR-nooffset).
 
+// One slice file is read whole (twice: here and by GDCM); a 4096x4096 slice
+// of 32-bit pixels is 64 MiB, more than any CT slice (512x512 or 1024x1024).
+constexpr std::uint64_t kMaxDicomSliceBytes = std::uint64_t(64) << 20;
+
 struct DicomFacts {
-  bool walked = false;  // false for deflated data sets, which only GDCM can inflate
+  bool walked = false;  // the whole data set was walked
   std::string sopClass, modality;
   bool pixelData = false;
   bool encapsulated = false;          // Pixel Data of undefined length: compressed fragments
@@ -104,7 +110,13 @@ public:
         pos = e.value + e.length;
       }
     }
-    if (ts == "1.2.840.10008.1.2.1.99") return facts_;  // deflated data set: GDCM inflates and checks it
+    if (ts == "1.2.840.10008.1.2.1.99") {
+      // Deflated explicit VR little endian: walk the inflated data set the same way.
+      b_ = inflateDataSet(pos);
+      pos = 0;
+      ts = "1.2.840.10008.1.2.1";
+      inflated_ = true;
+    }
     // The transfer syntax decides; without one (or when the data contradicts it, which GDCM
     // tolerates) look at the first element: big endian puts the group's high byte first, and
     // explicit VR has two upper-case letters after the tag.
@@ -129,7 +141,47 @@ private:
     bool undefined = false;
   };
 
-  [[noreturn]] void fail(const std::string& what) const { throw VolumeError(name_ + ": " + what); }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw VolumeError(name_ + ": " + what + (inflated_ ? " (byte offsets in the inflated data set)" : ""));
+  }
+
+  // The raw deflate stream after the file meta information, inflated with the
+  // same bounds as any compressed volume data: at most kMaxDeflateRatio times
+  // its size and at most kMaxDicomSliceBytes.
+  std::vector<unsigned char> inflateDataSet(std::size_t pos) const {
+    const std::uint64_t compressed = b_.size() - pos;
+    const std::uint64_t cap = std::min<std::uint64_t>(compressed * kMaxDeflateRatio + 1024, kMaxDicomSliceBytes);
+    std::vector<unsigned char> out;
+    z_stream z{};
+    if (inflateInit2(&z, -MAX_WBITS) != Z_OK) fail("cannot start inflating the deflated data set");
+    z.next_in = const_cast<unsigned char*>(b_.data() + pos);
+    z.avail_in = uInt(compressed);
+    int rc = Z_OK;
+    while (rc == Z_OK) {
+      if (out.size() >= cap) {
+        inflateEnd(&z);
+        fail("the deflated data set inflates beyond " + std::to_string(cap) + " bytes (from " +
+             std::to_string(compressed) + " compressed; at most " + std::to_string(kMaxDeflateRatio) +
+             " times that and at most " + std::to_string(kMaxDicomSliceBytes) + " bytes per slice)");
+      }
+      const std::size_t have = out.size();
+      const std::size_t want = std::size_t(std::min<std::uint64_t>(cap, have + (std::uint64_t(1) << 20)));
+      // Grow by doubling, but never reserve past the cap.
+      if (want > out.capacity()) out.reserve(std::size_t(std::min<std::uint64_t>(cap, std::max(want, 2 * out.capacity()))));
+      out.resize(want);
+      z.next_out = out.data() + have;
+      z.avail_out = uInt(out.size() - have);
+      rc = inflate(&z, Z_NO_FLUSH);
+      out.resize(out.size() - z.avail_out);
+      if (rc == Z_BUF_ERROR && z.avail_in == 0) break;  // the stream ends without its final block
+      if (rc == Z_BUF_ERROR) rc = Z_OK;                 // needed more room: go round
+    }
+    inflateEnd(&z);
+    if (rc != Z_STREAM_END)
+      fail("the deflated data set is corrupt or truncated (zlib: " + std::string(z.msg ? z.msg : "incomplete stream") +
+           ")");
+    return out;
+  }
   std::string text(const Element& e) const {
     return trim(std::string(reinterpret_cast<const char*>(&b_[e.value]), e.length));
   }
@@ -234,6 +286,7 @@ private:
 
   std::string name_;
   std::vector<unsigned char> b_;
+  bool inflated_ = false;
   DicomFacts facts_;
 };
 
@@ -247,6 +300,11 @@ void refuseModality(const std::string& name, const std::string& modality) {
 // Throws unless the file is structurally complete and, as far as can be told without GDCM, a CT image.
 DicomFacts checkStructure(const fs::path& file) {
   const std::string name = file.string();
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (!ec && size > kMaxDicomSliceBytes)
+    throw VolumeError(name + ": " + std::to_string(size) + " bytes is more than one DICOM slice may have (" +
+                      std::to_string(kMaxDicomSliceBytes) + " bytes, a 4096x4096 slice of 32 bits)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw VolumeError(name + ": cannot open the file");
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

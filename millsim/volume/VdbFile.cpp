@@ -5,7 +5,9 @@
 // here hold one FloatGrid named "density" and the metadata "millsim_dims" (the
 // volume's dimensions, which the active voxels alone cannot tell when the
 // border is air).
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,6 +34,30 @@ std::string gridList(const openvdb::GridPtrVec& grids) {
   return s.empty() ? "none" : s;
 }
 
+void refuseOversizedGrid(const std::string& name, const openvdb::GridBase& grid) {
+  const auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+  const auto hi = grid.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+  if (lo && hi) {
+    std::uint64_t voxels = 1;
+    for (int a = 0; a < 3; ++a) {
+      const std::int64_t extent = std::int64_t(hi->value()[a]) - std::int64_t(lo->value()[a]) + 1;
+      voxels = extent <= 0 ? 0 : std::min<std::uint64_t>(voxels * std::uint64_t(extent), kMaxVoxels + 1);
+    }
+    if (voxels > kMaxVoxels) {
+      std::ostringstream m;
+      m << name << ": grid '" << grid.getName() << "' spans " << lo->value() << " to " << hi->value()
+        << ", more than the limit of " << kMaxVoxels << " voxels";
+      throw VolumeError(m.str());
+    }
+  }
+  // A dense float grid of kMaxVoxels is 4 GiB; twice that leaves room for the tree.
+  const std::int64_t limit = std::int64_t(kMaxVoxels) * 8;
+  if (const auto mem = grid.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+      mem && mem->value() > limit)
+    throw VolumeError(name + ": grid '" + grid.getName() + "' needs " + std::to_string(mem->value()) +
+                      " bytes in memory, more than the " + std::to_string(limit) + " a volume may take");
+}
+
 }  // namespace
 
 VoxelVolume readVdb(const fs::path& file, float airValue) {
@@ -43,8 +69,16 @@ VoxelVolume readVdb(const fs::path& file, float airValue) {
   try {
     openvdb::io::File f(name);
     f.open(/*delayLoad=*/false);  // read everything now, so that a bad file fails here
+    // The statistics OpenVDB writes with every grid (bounding box, memory)
+    // are read without the trees, so a grid far larger than a volume may be
+    // is refused before its tree is allocated. A file without them (or one
+    // that lies) is still bounded by the voxel-count check below.
+    const openvdb::GridPtrVecPtr described = f.readAllGridMetadata();  // kept: the loop must not outlive it
+    for (const auto& g : *described) refuseOversizedGrid(name, *g);
     grids = f.getGrids();
     f.close();
+  } catch (const VolumeError&) {
+    throw;
   } catch (const std::exception& e) {
     throw VolumeError(name + ": cannot read as an OpenVDB file: " + e.what());
   }

@@ -39,6 +39,35 @@ using vtkio::toFloats;
 using vtkio::trim;
 using vtkio::VtkMessages;
 
+// VTK's XML parser keeps every element and attribute in memory, so a file
+// whose markup never ends (a 1 GB attribute, millions of elements) would cost
+// that much before VTK could complain. Real .vti markup is a few kilobytes:
+// stream the file up to <AppendedData> (VTK's parser stops there too) and
+// count the bytes inside '<' … '>'; text between tags is inline array data and
+// is bounded by the size check below instead.
+void checkMarkupSize(std::istream& in, const std::string& name) {
+  static const std::string kAppended = "<AppendedData";
+  std::vector<char> buf(1 << 16);
+  std::uintmax_t markup = 0;
+  bool inTag = false;
+  std::size_t matched = 0;  // characters of kAppended seen so far
+  while (in) {
+    in.read(buf.data(), std::streamsize(buf.size()));
+    const std::size_t got = std::size_t(in.gcount());
+    for (std::size_t i = 0; i < got; ++i) {
+      const char c = buf[i];
+      matched = c == kAppended[matched] ? matched + 1 : (c == '<' ? 1 : 0);
+      if (matched == kAppended.size()) return;
+      if (c == '<') inTag = true;
+      if (inTag && ++markup > kMaxHeaderBytes)
+        throw VolumeError(name + ": the VTK XML markup (elements and attributes, not array data) passes " +
+                          std::to_string(kMaxHeaderBytes) +
+                          " bytes (1 MiB, the most MillSim reads of a header); is this a .vti file?");
+      if (c == '>') inTag = false;
+    }
+  }
+}
+
 }  // namespace
 
 VoxelVolume readVti(const fs::path& file, float airValue) {
@@ -63,6 +92,9 @@ VoxelVolume readVti(const fs::path& file, float airValue) {
     }
     if (head.rfind("<?xml", 0) != 0 && head.rfind("<VTKFile", 0) != 0)
       throw VolumeError(name + ": not an XML file (a .vti file starts with '<?xml' or '<VTKFile')");
+    in.clear();
+    in.seekg(0);
+    checkMarkupSize(in, name);
     // VTK parses the XML only up to <AppendedData>, so a file cut inside appended raw data
     // would be read as garbage without an error. Every complete file ends with </VTKFile>.
     in.clear();

@@ -210,6 +210,50 @@ TEST(HapticLoop, LogRowsCarryEveryFrameAndThePeriod) {
   EXPECT_EQ(log.substr(log.size() - 15), ",1000,Constant\n") << "period_us, then the renderer's name";
 }
 
+// The log ends with what the device got at the stop: zero, after the last
+// frame, with the renderer's last drawn tool (graphics keep showing it).
+TEST(HapticLoop, LogEndsWithTheZeroOutputOfTheStop) {
+  VoxelScene scene;
+  FakeDevice::Shared dev;
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0.5, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  settings());
+  std::vector<FrameRecord> rows;
+  auto drain = [&] { loop.records().drain([&](const FrameRecord& r) { rows.push_back(r); }); };
+  for (int i = 0; i < 3; ++i) loop.stepSimulated();
+  drain();
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows.back().force, glm::dvec3(0.5, 0, 0));
+  loop.finish();
+  loop.finish();  // a second call adds nothing
+  drain();
+  ASSERT_EQ(rows.size(), 4u);
+  const FrameRecord& stop = rows.back();
+  EXPECT_TRUE(dev.stopped);
+  EXPECT_EQ(stop.frame, 3);
+  EXPECT_EQ(stop.t, rows[2].t);
+  EXPECT_EQ(stop.force, glm::dvec3(0.0));
+  EXPECT_EQ(stop.torque, glm::dvec3(0.0));
+  EXPECT_EQ(stop.out.force, glm::dvec3(0.0));
+  EXPECT_EQ(stop.out.flags, std::uint32_t(kSafetyStopped));
+  EXPECT_EQ(stop.periodUs, 0.0);
+  EXPECT_EQ(stop.device.position, rows[2].device.position);
+  EXPECT_EQ(stop.out.drawnTool.position, rows[2].out.drawnTool.position);
+  EXPECT_STREQ(stop.renderer, "Constant");
+  EXPECT_EQ(loop.stats().frames, 3) << "the stop row is not a haptic frame";
+}
+
+TEST(HapticLoop, StopWithoutAFrameLogsNothing) {
+  VoxelScene scene;
+  FakeDevice::Shared dev;
+  HapticLoop loop(scene, std::make_unique<ConstantAlgorithm>(glm::dvec3(0.5, 0, 0)), std::make_unique<FakeDevice>(dev),
+                  settings());
+  loop.finish();
+  long n = 0;
+  loop.records().drain([&](const FrameRecord&) { ++n; });
+  EXPECT_EQ(n, 0);
+  EXPECT_TRUE(dev.stopped);
+}
+
 // A swap shows in the log: the rows after it name the new renderer.
 TEST(HapticLoop, LogNamesTheRendererInChargeAcrossASwap) {
   struct Named final : HapticAlgorithm {
@@ -258,20 +302,22 @@ TEST(HapticLoop, RealTimeThreadRunsStopsOnDeviceFailureAndZeroesOutput) {
   loop.start(30.0);  // the failure must end it long before
   long lastFrame = -1;
   bool contiguous = true;
+  FrameRecord last;
+  auto take = [&](const FrameRecord& r) {
+    contiguous &= r.frame == lastFrame + 1;
+    lastFrame = r.frame;
+    last = r;
+  };
   while (!loop.finished()) {
-    loop.records().drain([&](const FrameRecord& r) {
-      contiguous &= r.frame == lastFrame + 1;
-      lastFrame = r.frame;
-    });
+    loop.records().drain(take);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   loop.join();
-  loop.records().drain([&](const FrameRecord& r) {
-    contiguous &= r.frame == lastFrame + 1;
-    lastFrame = r.frame;
-  });
+  loop.records().drain(take);
   EXPECT_TRUE(contiguous);
-  EXPECT_EQ(lastFrame, 299);
+  EXPECT_EQ(lastFrame, 300) << "300 frames, then the stop row";
+  EXPECT_EQ(last.out.flags, std::uint32_t(kSafetyStopped));
+  EXPECT_EQ(last.force, glm::dvec3(0.0)) << "a failed device is still logged as zeroed";
   EXPECT_EQ(loop.failure(), "fake device unplugged");
   EXPECT_TRUE(dev.stopped);
   const LoopStats st = loop.stats();
@@ -341,7 +387,7 @@ TEST(HapticLoop, MillsInRealTimeWhileGraphicsAndSceneThreadsRead) {
 
   const LoopStats st = loop.stats();
   EXPECT_GT(st.removedVolume, 0.0);
-  EXPECT_EQ(rows, st.frames);
+  EXPECT_EQ(rows, st.frames + 1) << "every frame, then the stop row";
   EXPECT_GT(framesSeen, 0);
   EXPECT_EQ(replica.volume().contentHash(), volume.contentHash()) << "the graphics copy missed a milled block";
 }

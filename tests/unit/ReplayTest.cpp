@@ -12,6 +12,7 @@
 #include "measure/Renderers.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/devices/RecordedRun.h"
 #include "millsim/run/LiveUpdates.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/run/RendererPool.h"
@@ -136,6 +137,79 @@ TEST(Replay, EveryRendererReplaysTheSameSceneAndFeelsTheTooth) {
     for (int c = 0; c < 31; ++c) std::getline(cells, cell, ',');
     EXPECT_GT(std::stod(cell), 0.0) << renderer;
   }
+}
+
+// Review: a log replays to itself, for every renderer; where its renderer
+// column changes, the same swap is made at the same frame.
+std::string reviewToString(const std::string& scenePath, const std::string& logText) {
+  LoadResult r = loadSceneFile(scenePath, builtinRegistry());
+  EXPECT_TRUE(r.ok()) << r.report();
+  if (!r.ok()) return {};
+  std::ostringstream out;
+  replayRecorded(*r.scene, RecordedRun::parse(logText, "run.csv"), &out, ReplayOptions{});
+  return out.str();
+}
+
+TEST(Review, ALogReplaysToItselfForEveryRenderer) {
+  const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
+  for (const std::string& renderer : measure::registeredRenderers()) {
+    const std::string log = replayToString(scene, renderer);
+    ASSERT_TRUE(RecordedRun::isFrameLog(log));
+    EXPECT_EQ(RecordedRun::parse(log, "run.csv").frames().size(), 301u) << "the stop row is not a frame";
+    EXPECT_EQ(reviewToString(scene, log), log) << renderer;
+  }
+}
+
+TEST(Review, TheRunsRendererSwapsAreMadeAgain) {
+  const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
+  const std::string plain = replayToString(scene, "SurfacePointRenderer");
+  // The same frames, said to have swapped to BarbicRenderer from t = 0.15 s on.
+  std::string swapped;
+  std::istringstream in(plain);
+  std::string line;
+  int row = 0;
+  while (std::getline(in, line)) {
+    if (row++ > 150) line = line.substr(0, line.rfind(',') + 1) + "BarbicRenderer";
+    swapped += line + "\n";
+  }
+  const std::string review = reviewToString(scene, swapped);
+  ASSERT_FALSE(review.empty());
+  const RecordedRun got = RecordedRun::parse(review, "review.csv");
+  ASSERT_EQ(got.renderers(), (std::vector<std::string>{"SurfacePointRenderer", "BarbicRenderer"}));
+  EXPECT_EQ(got.frames()[149].renderer, 0);
+  EXPECT_EQ(got.frames()[150].renderer, 1) << "the swap happens at the frame the log says";
+  EXPECT_NE(review, plain) << "after the swap, BarbicRenderer's forces";
+  EXPECT_EQ(reviewToString(scene, review), review) << "and the review of the review is itself";
+}
+
+TEST(Review, MalformedLogsNameTheLine) {
+  const std::string header = "t,x,y,z,qw,qx,qy,qz,fx,button,flags,period_us,renderer\n";
+  const std::string row = "0,0,0,0,1,0,0,0,0,0,0,1000,A\n";
+  auto errorOfLog = [](const std::string& text) {
+    try {
+      RecordedRun::parse(text, "run.csv");
+    } catch (const TrajectoryError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(errorOfLog(header + row).find("(no error)"), 0u);
+  EXPECT_NE(errorOfLog("t,x,y,z,qw,qx,qy,qz,fx,button\n" + row).find("run.csv:1: the frame log has no 'period_us' column"),
+            std::string::npos);
+  EXPECT_NE(errorOfLog(header + row + row).find("run.csv:3: time 0 does not increase"), std::string::npos);
+  EXPECT_NE(errorOfLog(header + row + "0.001,0,0,0,1,0,0,0,0,0,4096,0,A\n" + "0.002,0,0,0,1,0,0,0,0,0,0,1000,A\n")
+                .find("run.csv:4: a row after the stop row"),
+            std::string::npos);
+  EXPECT_NE(errorOfLog(header + "0,0,0,0,1,0,0,0,0,2,0,1000,A\n").find("run.csv:2: column 'button' must be 0 or 1"),
+            std::string::npos);
+  EXPECT_NE(errorOfLog(header + "0,0,0,0,1,0,0,0,0,0,0,1000\n").find("run.csv:2: expected 13 columns"),
+            std::string::npos);
+  EXPECT_NE(errorOfLog(header).find("run.csv: the frame log has a header but no frames"), std::string::npos);
+  // Read as a plain trajectory (a device's url), a log gives its poses and button.
+  const Trajectory t = Trajectory::parse(header + row + "0.001,0.002,0,0,1,0,0,0,0,1,0,1000,A\n", "run.csv");
+  ASSERT_EQ(t.samples().size(), 2u);
+  EXPECT_EQ(t.samples()[1].pose.position.x, 0.002);
+  EXPECT_TRUE(t.samples()[1].button);
 }
 
 TEST(Replay, SwappingOnlyTheRendererElementWorks) {

@@ -689,6 +689,25 @@ TEST(VolumeIOVdb, DimsFromActiveVoxelsWithoutMetadataAndBadFiles) {
   EXPECT_VOLUME_ERROR(readVdb(cut, -1000.f), cut, "cut.vdb: ");
 }
 
+// A grid whose statistics (written by OpenVDB with every grid) say it spans
+// more voxels than a volume may have is refused before its tree is read.
+TEST(VolumeIOVdb, RefusesAGridTooLargeFromItsStatistics) {
+  ScratchDir dir;
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.f);
+  grid->setName("density");
+  // One active 8³ tile at each end of a 3976³ box: a tiny file and tree.
+  grid->tree().addTile(1, openvdb::Coord(0), 1.f, true);
+  grid->tree().addTile(1, openvdb::Coord(4095 - 127), 1.f, true);
+  {
+    openvdb::io::File f((dir.path() / "huge.vdb").string());
+    f.write(openvdb::GridPtrVec{grid});
+    f.close();
+  }
+  EXPECT_VOLUME_ERROR(readVdb(dir.path() / "huge.vdb", 0.f), dir.path() / "huge.vdb",
+                      "grid 'density' spans [0, 0, 0] to [3975, 3975, 3975], more than the limit of 1073741824 voxels");
+}
+
 // ---- loadVolume ------------------------------------------------------------------------
 
 TEST(VolumeIOLoad, DispatchAndRefusals) {

@@ -97,6 +97,12 @@ def vti(name, compressor):
 """)
 
 
+# VTK XML markup that never ends: a 2 MiB attribute before any data.
+with open(replace(os.path.join(out, "endless-markup.vti")), "w") as f:
+    f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="1.0" Note="' + "x" * (2 << 20) +
+            '">\n</VTKFile>\n')
+scene("vti-endless-markup", "endless-markup.vti")
+
 vti("huge.vti", "")
 scene("vti-huge-extent", "huge.vti")
 vti("bomb.vti", ' compressor="vtkZLibDataCompressor"')
@@ -113,6 +119,30 @@ ds.Columns = 30000
 ds.PixelData = bytes(200)
 ds.save_as(replace(os.path.join(out, "huge.dcm")))
 scene("dcm-huge-rows", "huge.dcm")
+
+# The same lie in a deflated data set (transfer syntax 1.2.840.10008.1.2.1.99):
+# the structure check inflates it (bounded) and walks it like any other.
+from pydicom.uid import DeflatedExplicitVRLittleEndian  # noqa: E402
+
+ds.file_meta.TransferSyntaxUID = DeflatedExplicitVRLittleEndian
+ds.is_little_endian = True
+ds.is_implicit_VR = False
+ds.save_as(replace(os.path.join(out, "huge-deflated.dcm")))
+scene("dcm-deflated-huge-rows", "huge-deflated.dcm")
+
+# A deflated data set that inflates without end (a "zip bomb" slice): the
+# file meta information of huge-deflated.dcm, then 100 MB of zeros deflated.
+import struct  # noqa: E402
+import zlib  # noqa: E402
+with open(os.path.join(out, "huge-deflated.dcm"), "rb") as f:
+    deflated = f.read()
+# (0002,0000) UL, explicit VR: tag, "UL", length 4, then the meta group's length.
+meta_end = 132 + 12 + struct.unpack_from("<I", deflated, 132 + 8)[0]
+packer = zlib.compressobj(9, zlib.DEFLATED, -15)
+bomb = packer.compress(bytes(100 << 20)) + packer.flush()
+with open(replace(os.path.join(out, "bomb.dcm")), "wb") as f:
+    f.write(deflated[:meta_end] + bomb)
+scene("dcm-deflate-bomb", "bomb.dcm")
 
 
 # Trajectory urls that are a FIFO or /dev/zero: a clear error, not a hang.
