@@ -12,6 +12,7 @@
 #include "Commands.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
+#include "SaveVolume.h"
 #include "millsim/audio/SoundTrack.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/run/Replay.h"
@@ -22,7 +23,7 @@ namespace millsim::app {
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("replay", "Replay a trajectory through the scene's haptics renderer (deterministic)");
   struct Args {
-    std::string scene, trajectory, log, soundOut;
+    std::string scene, trajectory, log, soundOut, saveVolume;
     ReplayOptions options;
   };
   auto args = std::make_shared<Args>();
@@ -37,6 +38,8 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
                   "Use a default renderer of this type instead of the scene's (e.g. SurfacePointRenderer)");
   cmd->add_option("--rate", args->options.rate, "Haptic rate in Hz (default: the device's desiredHapticsRate)")
       ->check(finiteIn(1, 20000, "Hz (the range of desiredHapticsRate)"));
+  cmd->add_option("--save-volume", args->saveVolume,
+                  "At the end, write the milled volume to this .vdb file (a VolumeObject url loads it back)");
   cmd->add_flag("--timing", args->options.timing,
                 "Log measured compute time per frame (frame_us); without it the log is byte-identical run to run");
   cmd->callback([args, &global, &result] {
@@ -50,6 +53,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
+      if (!args->saveVolume.empty()) checkSaveVolume(*r.scene, args->saveVolume);
       // A trajectory, or a run's frame log: that replays the run's own frames (review).
       const std::string text = readTrajectoryText(args->trajectory);
       std::optional<RecordedRun> recorded;
@@ -91,6 +95,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
                   << 20.0 * std::log10(std::max(sound->rms(), 1e-9)) << " dBFS, written to " << args->soundOut << "\n";
       if (args->options.timing)
         std::cout << "  compute time per frame: mean " << s.meanFrameUs << " µs, p99 " << s.p99FrameUs << " µs\n";
+      if (!args->saveVolume.empty()) std::cout << saveVolume(*r.scene, args->saveVolume);
       result = kExitOk;
     } catch (const std::exception& e) {
       std::cerr << "millsim replay: error: " << e.what() << "\n";

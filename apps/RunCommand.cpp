@@ -21,6 +21,7 @@
 #include "Commands.h"
 #include "NumberArgs.h"
 #include "ImageArgs.h"
+#include "SaveVolume.h"
 #include "RunControls.h"
 #include "RunGraphics.h"
 #include "RunHud.h"
@@ -87,7 +88,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     std::string scene, log, renderer, trajectory, screenshot, size;
     double duration = 0.0;
     bool noGraphics = false, noWindow = false;
-    std::string soundOut;
+    std::string soundOut, saveVolume;
     bool noSound = false;
   };
   auto args = std::make_shared<Args>();
@@ -106,6 +107,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("--size", args->size, "Window or frame size WIDTHxHEIGHT (default 1024x768 in a window, else 512x512)");
   cmd->add_option("--sound-out", args->soundOut, "WAV file of the milling sound (16-bit PCM mono, the run's length)");
   cmd->add_flag("--no-sound", args->noSound, "Do not play the milling sound live");
+  cmd->add_option("--save-volume", args->saveVolume,
+                  "At the end, write the milled volume to this .vdb file (a VolumeObject url loads it back)");
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
@@ -125,6 +128,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     std::unique_ptr<RunSound> sound;
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
+      if (!args->saveVolume.empty()) checkSaveVolume(*r.scene, args->saveVolume);
       if (args->noGraphics && !args->screenshot.empty())
         throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
       if (!args->noGraphics) {
@@ -280,6 +284,15 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
     sound->printSummary(std::cout);
+    if (!args->saveVolume.empty()) {
+      try {
+        std::cout << saveVolume(*r.scene, args->saveVolume);
+      } catch (const std::exception& e) {
+        std::cerr << "millsim run: error: " << e.what() << "\n";
+        result = kExitFailure;
+        return;
+      }
+    }
     if (graphics) {
       std::cout << std::fixed << std::setprecision(1) << (graphicsStats.window ? "  window: " : "  graphics: ")
                 << graphicsStats.frames << " frames at "

@@ -33,6 +33,14 @@ public:
   SFVec3f torque{this, "torque", Access::OutputOnly, glm::vec3(0.f),
                  "Torque last sent to the device, about the burr centre (N·m)."};
   SFBool mainButton{this, "mainButton", Access::OutputOnly, false, "Milling switch: true while the burr spins."};
+  SFBool inContact{this, "inContact", Access::OutputOnly, false,
+                   "True while the renderer reports contact (colliding vertices or shell points)."};
+  SFFloat contactForce{this, "contactForce", Access::OutputOnly, 0.f,
+                       "Magnitude of the force last sent to the device (N)."};
+  SFVec3f proxyPosition{this, "proxyPosition", Access::OutputOnly, glm::vec3(0.f),
+                        "Burr centre of the tool as the renderer draws it (its proxy or coupled tool), world frame (m)."};
+  SFRotation proxyOrientation{this, "proxyOrientation", Access::OutputOnly, Rotation{},
+                              "Orientation of the tool as the renderer draws it, world frame."};
   SFFloat hapticsRate{this, "hapticsRate", Access::OutputOnly, 0.f, "Measured haptic loop rate (Hz)."};
   SFTime hapticsLoopTime{this, "hapticsLoopTime", Access::OutputOnly, Time{},
                          "Compute time of the last haptic frame (s)."};

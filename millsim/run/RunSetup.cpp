@@ -64,16 +64,26 @@ std::unique_ptr<HapticAlgorithm> compileRenderer(Scene& scene, const std::string
   return rendererOfType(scene, typeName, node)->compile(run.tool, *run.scene);
 }
 
-void publishToDevice(HapticsDevice& device, const FrameRecord& r, double rate) {
-  device.devicePosition.set(glm::vec3(r.device.position));
-  const glm::dquat q = r.device.orientation.w < 0.0 ? -r.device.orientation : r.device.orientation;
+namespace {
+Rotation toRotation(glm::dquat q) {
+  if (q.w < 0.0) q = -q;
   const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
   const glm::dvec3 v(q.x, q.y, q.z);
   const double s = glm::length(v);
-  device.deviceOrientation.set(s > 1e-12 ? Rotation{glm::vec3(v / s), float(angle)} : Rotation{});
+  return s > 1e-12 ? Rotation{glm::vec3(v / s), float(angle)} : Rotation{};
+}
+}  // namespace
+
+void publishToDevice(HapticsDevice& device, const FrameRecord& r, double rate) {
+  device.devicePosition.set(glm::vec3(r.device.position));
+  device.deviceOrientation.set(toRotation(r.device.orientation));
   device.force.set(glm::vec3(r.force));
   device.torque.set(glm::vec3(r.torque));
   device.mainButton.set(r.button);
+  device.inContact.set(r.out.contacts > 0);
+  device.contactForce.set(float(glm::length(r.force)));
+  device.proxyPosition.set(glm::vec3(r.out.drawnTool.position));
+  device.proxyOrientation.set(toRotation(r.out.drawnTool.orientation));
   device.hapticsRate.set(float(rate));
   device.hapticsLoopTime.set(Time{r.computeUs * 1e-6});
 }

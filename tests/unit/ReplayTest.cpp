@@ -212,6 +212,24 @@ TEST(Review, MalformedLogsNameTheLine) {
   EXPECT_TRUE(t.samples()[1].button);
 }
 
+// The device node's outputs a lesson can route (issue 18, part 6).
+TEST(Replay, DeviceOutputsSayContactForceAndTheDrawnTool) {
+  LoadResult r = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const std::string csv = kHeader + "0,0,0.0125,0,1,0,0,0,1\n0.15,0,0.0086,0,1,0,0,0,1\n";
+  ReplayOptions options;
+  options.renderer = "LineProxyRenderer";  // a proxy: the drawn burr is not the device's
+  const ReplaySummary s = replay(*r.scene, Trajectory::parse(csv, "press.csv"), nullptr, options);
+  const HapticsDevice& d = *findDevice(*r.scene);
+  ASSERT_GT(s.last.contacts, 0) << "the burr ends pressed into the tooth";
+  EXPECT_TRUE(d.inContact.get());
+  EXPECT_GT(d.contactForce.get(), 0.f);
+  EXPECT_FLOAT_EQ(d.contactForce.get(), glm::length(d.force.get()));
+  EXPECT_EQ(d.proxyPosition.get(), glm::vec3(s.last.drawnTool.position));
+  EXPECT_GT(glm::length(d.proxyPosition.get() - d.devicePosition.get()), 0.f)
+      << "in contact, the drawn burr stays outside while the device goes in";
+}
+
 TEST(Replay, SwappingOnlyTheRendererElementWorks) {
   LoadResult a = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
   LoadResult b = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/lessons/line-proxy.x3d", builtinRegistry());

@@ -1,0 +1,19 @@
+#pragma once
+// --save-volume FILE.vdb for run and replay: the milled volume at the end, as
+// an OpenVDB file a VolumeObject url loads back (same voxels, voxel size and
+// dimensions; the isoValue and the placement stay in the scene).
+#include <filesystem>
+#include <string>
+
+#include "millsim/core/Scene.h"
+
+namespace millsim::app {
+
+// Before the run: one volume to save and a writable .vdb path, or
+// std::invalid_argument saying what is wrong.
+void checkSaveVolume(const Scene& scene, const std::filesystem::path& file);
+
+// After the run (the haptic thread has stopped): writes it; returns the line to print.
+std::string saveVolume(const Scene& scene, const std::filesystem::path& file);
+
+}  // namespace millsim::app
