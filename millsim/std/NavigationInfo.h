@@ -16,6 +16,10 @@ public:
                      "Collision distance, eye height, step height (m).", Range::closed(0, 1e4)};
   SFFloat visibilityLimit{this, "visibilityLimit", Access::InputOutput, 0.f,
                           "Far clipping distance (m); 0 = unlimited.", Range::closed(0, 1e7)};
+  SFTime transitionTime{this, "transitionTime", Access::InputOutput, Time{1.0},
+                        "Seconds a viewpoint transition takes. Accepted; not acted on by MillSim.", Range::closed(0, 1e6)};
+  MFString transitionType{this, "transitionType", Access::InputOutput, {"LINEAR"},
+                          "TELEPORT, LINEAR or ANIMATE. Accepted; not acted on by MillSim."};
 };
 
 }  // namespace millsim
