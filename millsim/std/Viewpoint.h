@@ -28,6 +28,10 @@ public:
   SFBool retainUserOffsets{this, "retainUserOffsets", Access::InputOutput, false,
                            "Whether navigation offsets are kept when the viewpoint is re-bound. Accepted; not acted on by MillSim."};
   SFBool viewAll{this, "viewAll", Access::InputOutput, false, "Whether to fit the whole scene into view. Accepted; not acted on by MillSim."};
+  // X3D's binding events (MillSim keeps no binding stack: the first node of the type is used).
+  SFBool set_bind{this, "set_bind", Access::InputOnly, false, "true binds this node, false unbinds it. Accepted; not acted on by MillSim."};
+  SFTime bindTime{this, "bindTime", Access::OutputOnly, Time{0}, "When the node was bound or unbound. Accepted; not acted on by MillSim."};
+  SFBool isBound{this, "isBound", Access::OutputOnly, false, "Whether the node is bound. Accepted; not acted on by MillSim."};
 };
 
 }  // namespace millsim
