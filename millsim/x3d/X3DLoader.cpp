@@ -698,12 +698,14 @@ private:
       sink_.error(loc, "ImportLibrary is disabled for this load (no file access)");
       return;
     }
-    if (lib.url.get().empty()) {
-      sink_.error(loc, "ImportLibrary has an empty url");
+    std::vector<std::string> urls = lib.url.get();
+    urls.insert(urls.end(), lib.library.get().begin(), lib.library.get().end());
+    if (urls.empty()) {
+      sink_.error(loc, "ImportLibrary has an empty url (and no H3DAPI-style library)");
       return;
     }
     std::string tried;
-    for (const std::string& url : lib.url.get()) {
+    for (const std::string& url : urls) {
       fs::path file;
       try {
         file = resolvePlugin(url, doc.dir, options_.plugins);
