@@ -11,9 +11,12 @@ namespace millsim::app {
 void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("check", "Load a scene, report every problem, and print its node tree");
   auto scene = std::make_shared<std::string>();
+  auto strict = std::make_shared<bool>(false);
   cmd->add_option("scene", *scene, "X3D scene file")->required();
-  cmd->callback([scene, &global, &result] {
+  addStrictFlag(cmd, *strict);
+  cmd->callback([scene, strict, &global, &result] {
     LoadOptions options;
+    options.strict = *strict;
     options.plugins.allowAnyPath = global.allowPluginPath;
     LoadResult r = loadSceneFile(*scene, builtinRegistry(), options);
     std::cerr << r.report();

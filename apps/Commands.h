@@ -14,6 +14,12 @@ struct GlobalOptions {
   bool allowPluginPath = false;
 };
 
+// --strict on the verbs that load a scene: warnings (an unsupported X3D node
+// skipped, an unquoted MFString read as one string, ...) become errors.
+inline void addStrictFlag(CLI::App* cmd, bool& strict) {
+  cmd->add_flag("--strict", strict, "Treat every warning of the scene loader as an error (exit 2)");
+}
+
 void addBenchCommand(CLI::App& app, int& result);
 void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addNodesCommand(CLI::App& app, int& result);

@@ -26,12 +26,14 @@ namespace millsim::app {
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("render", "Draw the scene offscreen (OSMesa) to a PNG, after replaying its trajectory");
   struct Args {
+    bool strict = false;
     std::string scene, out, size = "512x512", trajectory, viewpoint;
     double at = std::numeric_limits<double>::infinity();
     ReplayOptions options;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
+  addStrictFlag(cmd, args->strict);
   cmd->add_option("--out", args->out, "PNG file to write")->required();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default 512x512)");
   cmd->add_option("--trajectory", args->trajectory,
@@ -49,6 +51,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
 
       LoadOptions lo;
       lo.plugins.allowAnyPath = global.allowPluginPath;
+      lo.strict = args->strict;
       LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
       std::cerr << r.report();
       if (!r.ok()) return;

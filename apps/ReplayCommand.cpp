@@ -23,11 +23,13 @@ namespace millsim::app {
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("replay", "Replay a trajectory through the scene's haptics renderer (deterministic)");
   struct Args {
+    bool strict = false;
     std::string scene, trajectory, log, soundOut, saveVolume;
     ReplayOptions options;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
+  addStrictFlag(cmd, args->strict);
   cmd->add_option("--trajectory", args->trajectory,
                   "Trajectory CSV (t,x,y,z,qw,qx,qy,qz,button), or the --log of a `millsim run` to review that run "
                   "frame by frame")
@@ -45,6 +47,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
+    lo.strict = args->strict;
     LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
     std::cerr << r.report();
     if (!r.ok()) {

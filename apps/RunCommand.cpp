@@ -85,6 +85,7 @@ std::string windowTitle(const Scene& scene, const std::string& file) {
 void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
   struct Args {
+    bool strict = false;
     std::string scene, log, renderer, trajectory, screenshot, size;
     double duration = 0.0;
     bool noGraphics = false, noWindow = false;
@@ -93,6 +94,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
+  addStrictFlag(cmd, args->strict);
   cmd->add_option("--duration", args->duration,
                   "Seconds to run (default: the device's trajectory; a hardware device runs until Ctrl-C)")
       ->check(finiteIn(0.001, 1e6, "s"));
@@ -112,6 +114,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
+    lo.strict = args->strict;
     LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
     std::cerr << r.report();
     if (!r.ok()) {

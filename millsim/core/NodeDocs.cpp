@@ -38,7 +38,11 @@ std::string nodeReferenceMarkdown(const NodeRegistry& registry) {
       "a test fails when this file is out of date (regenerate with "
       "`build/release/apps/millsim nodes --markdown > docs/nodes.md`).\n\n"
       "Units are SI (m, N, N·m, s, radians). Access types: `initializeOnly` (set in the file only), "
-      "`inputOutput` (set in the file and by routes), `inputOnly` (routes only), `outputOnly` (read and routed from).\n";
+      "`inputOutput` (set in the file and by routes), `inputOnly` (routes only), `outputOnly` (read and routed from).\n\n"
+      "Standard fields MillSim parses but does not act on say \"Accepted; not acted on by MillSim.\" The "
+      "attributes `DEF`, `USE`, `containerField` and X3D 4's `id`, `class` and `style` are read by the loader and set "
+      "no field. A standard X3D node not listed here is skipped with a warning (`--strict` makes it an error); "
+      "H3DAPI's `DeviceInfo` is read as a group of the device nodes inside it.\n";
   std::map<std::string, std::vector<const NodeType*>> byComponent;
   for (const NodeType* t : registry.all()) byComponent[t->component].push_back(t);
   for (const auto& [component, types] : byComponent) {

@@ -17,6 +17,16 @@ public:
   MFFloat groundAngle{this, "groundAngle", Access::InputOutput, {}, "Angles (radians) at which groundColor changes.",
                       Range::closed(0.0, 1.57079632679489661923)};
   SFFloat transparency{this, "transparency", Access::InputOutput, 0.f, "0 = opaque.", Range::closed(0.0, 1.0)};
+  MFString backUrl{this, "backUrl", Access::InputOutput, {}, "Panorama image of the back side. Accepted; not acted on by MillSim."};
+  MFString bottomUrl{this, "bottomUrl", Access::InputOutput, {}, "Panorama image of the bottom side. Accepted; not acted on by MillSim."};
+  MFString frontUrl{this, "frontUrl", Access::InputOutput, {}, "Panorama image of the front side. Accepted; not acted on by MillSim."};
+  MFString leftUrl{this, "leftUrl", Access::InputOutput, {}, "Panorama image of the left side. Accepted; not acted on by MillSim."};
+  MFString rightUrl{this, "rightUrl", Access::InputOutput, {}, "Panorama image of the right side. Accepted; not acted on by MillSim."};
+  MFString topUrl{this, "topUrl", Access::InputOutput, {}, "Panorama image of the top side. Accepted; not acted on by MillSim."};
+  // X3D's binding events (MillSim keeps no binding stack: the first node of the type is used).
+  SFBool set_bind{this, "set_bind", Access::InputOnly, false, "true binds this node, false unbinds it. Accepted; not acted on by MillSim."};
+  SFTime bindTime{this, "bindTime", Access::OutputOnly, Time{0}, "When the node was bound or unbound. Accepted; not acted on by MillSim."};
+  SFBool isBound{this, "isBound", Access::OutputOnly, false, "Whether the node is bound. Accepted; not acted on by MillSim."};
 };
 
 }  // namespace millsim

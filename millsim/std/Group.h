@@ -11,6 +11,8 @@ public:
                      "Centre of a bounding box hint (m); unused by MillSim.", Range::closed(-1e4, 1e4)};
   SFVec3f bboxSize{this, "bboxSize", Access::InitializeOnly, glm::vec3(-1.f),
                    "Size of a bounding box hint (m); -1 -1 -1 means none.", Range::closed(-1, 1e4)};
+  SFBool bboxDisplay{this, "bboxDisplay", Access::InputOutput, false, "Whether to draw the bounding box. Accepted; not acted on by MillSim."};
+  SFBool visible{this, "visible", Access::InputOutput, true, "Whether to draw the children. Accepted; not acted on by MillSim."};
 };
 
 // Groups child nodes without changing their frame.

@@ -11,6 +11,9 @@ public:
   const NodeType& nodeType() const override { return type(); }
 
   MFString url{this, "url", Access::InitializeOnly, {}, "Library file names; the first that loads is used."};
+  // H3DAPI scenes name their libraries here; the same path rules apply.
+  MFString library{this, "library", Access::InitializeOnly, {},
+                   "H3DAPI's spelling of url: library file names tried after url's, with the same path rules."};
 };
 
 }  // namespace millsim

@@ -21,6 +21,17 @@ public:
                            "Point the viewer orbits about (m).", Range::closed(-1e4, 1e4)};
   SFString description{this, "description", Access::InputOutput, "", "Text shown to the user."};
   SFBool jump{this, "jump", Access::InputOutput, true, "Whether binding moves the viewer to this viewpoint."};
+  SFFloat nearDistance{this, "nearDistance", Access::InputOutput, -1.f,
+                       "Near clipping distance (m); -1 = the browser's choice. Accepted; not acted on by MillSim.", Range::closed(-1, 1e7)};
+  SFFloat farDistance{this, "farDistance", Access::InputOutput, -1.f,
+                      "Far clipping distance (m); -1 = the browser's choice. Accepted; not acted on by MillSim.", Range::closed(-1, 1e7)};
+  SFBool retainUserOffsets{this, "retainUserOffsets", Access::InputOutput, false,
+                           "Whether navigation offsets are kept when the viewpoint is re-bound. Accepted; not acted on by MillSim."};
+  SFBool viewAll{this, "viewAll", Access::InputOutput, false, "Whether to fit the whole scene into view. Accepted; not acted on by MillSim."};
+  // X3D's binding events (MillSim keeps no binding stack: the first node of the type is used).
+  SFBool set_bind{this, "set_bind", Access::InputOnly, false, "true binds this node, false unbinds it. Accepted; not acted on by MillSim."};
+  SFTime bindTime{this, "bindTime", Access::OutputOnly, Time{0}, "When the node was bound or unbound. Accepted; not acted on by MillSim."};
+  SFBool isBound{this, "isBound", Access::OutputOnly, false, "Whether the node is bound. Accepted; not acted on by MillSim."};
 };
 
 }  // namespace millsim

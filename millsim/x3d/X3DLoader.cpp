@@ -4,13 +4,15 @@
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "millsim/std/ImportLibrary.h"
 #include "millsim/std/Inline.h"
+#include "millsim/x3d/H3dNodeNames.h"
+#include "millsim/x3d/SceneFileText.h"
 #include "millsim/x3d/SourceText.h"
+#include "millsim/x3d/UnitStatement.h"
+#include "millsim/x3d/X3dStandardNodes.h"
 
 namespace millsim {
 
@@ -59,6 +61,8 @@ struct Document {
   xmlDocPtr xml = nullptr;
   fs::path dir;
   std::map<std::string, std::shared_ptr<Node>, std::less<>>* defs;
+  // DEF name -> type of nodes skipped as unsupported: a USE or ROUTE of one is skipped too.
+  std::map<std::string, std::string, std::less<>> skippedDefs;
   ~Document() {
     if (xml) xmlFreeDoc(xml);
   }
@@ -73,14 +77,21 @@ public:
 
   LoadResult load(std::string text, std::string label, fs::path dir, fs::path canonical) {
     if (!canonical.empty()) inlineStack_.push_back(canonical);
-    Document doc{SourceText(std::move(label), std::move(text)), nullptr, std::move(dir), &scene_->defs};
+    Document doc{SourceText(std::move(label), std::move(text)), nullptr, std::move(dir), &scene_->defs, {}};
     if (parseXml(doc)) readTopLevel(doc, scene_->root->children, true);
     // Whole-scene checks (NodeRegistry::addSceneCheck) need a scene whose nodes all loaded.
     if (!sink_.hasErrors())
       for (SceneCheck check : scene_->registry.sceneChecks()) check(*scene_, sink_);
-    for (auto& d : sink_.all())
-      if (d.severity == Severity::Error) return {nullptr, sink_.take()};
-    return {std::move(scene_), sink_.take()};
+    std::vector<Diagnostic> all = sink_.take();
+    if (options_.strict)
+      for (auto& d : all)
+        if (d.severity == Severity::Warning) {
+          d.severity = Severity::Error;
+          d.message += " (an error with --strict)";
+        }
+    for (auto& d : all)
+      if (d.severity == Severity::Error) return {nullptr, std::move(all)};
+    return {std::move(scene_), std::move(all)};
   }
 
 private:
@@ -161,12 +172,12 @@ private:
       sink_.error({doc.src.file(), 1, 1}, "the document has no root element; expected <X3D>");
       return;
     }
-    std::size_t rootTag;
-    SourceLocation rootLoc = locate(doc, root, &rootTag);
     if (nameOf(root) != "X3D") {
-      sink_.error(rootLoc, "the root element is <" + std::string(nameOf(root)) + ">; expected <X3D>");
+      readFragment(doc, root, target);
       return;
     }
+    std::size_t rootTag;
+    SourceLocation rootLoc = locate(doc, root, &rootTag);
     for (const xmlAttr* a = root->properties; a; a = a->next) {
       if (a->ns) continue;  // xmlns:xsd, xsd:noNamespaceSchemaLocation
       std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
@@ -189,20 +200,70 @@ private:
           continue;
         }
         sawScene = true;
-        std::vector<const Node*> ancestors;
-        for (xmlNode* child = c->children; child && !sink_.full(); child = child->next) {
-          if (!checkNonElement(doc, child, "Scene")) continue;
-          if (nameOf(child) == "ROUTE") {
-            readRoute(doc, child);
-            continue;
-          }
-          readAndAttach(doc, child, target, "Scene", ancestors);
-        }
+        readSceneChildren(doc, c, target);
       } else {
         sink_.error(locate(doc, c), "unexpected <" + std::string(n) + "> inside <X3D>; expected <head> or <Scene>");
       }
     }
     if (!sawScene && !sink_.hasErrors()) sink_.error(rootLoc, "the <X3D> element has no <Scene>");
+  }
+
+  void readSceneChildren(Document& doc, xmlNode* scene, MFNodeOf<ChildNode>& target) {
+    std::vector<const Node*> ancestors;
+    forEachChild(doc, scene, "Scene", [&](xmlNode* child) {
+      if (nameOf(child) == "ROUTE") readRoute(doc, child);
+      else readAndAttach(doc, child, target, "Scene", ancestors);
+    });
+  }
+
+  // H3DLoad reads a file whose root is <Scene> or a node (<Group>,
+  // <Transform>, <DeviceInfo>, ...) as that scene fragment; so does MillSim.
+  void readFragment(Document& doc, xmlNode* root, MFNodeOf<ChildNode>& target) {
+    const std::string name(nameOf(root));
+    if (name == "Scene") {
+      locate(doc, root);
+      readSceneChildren(doc, root, target);
+      return;
+    }
+    if (name == "DeviceInfo" || scene_->registry.find(name) || findStandardNode(name) || findH3dNode(name)) {
+      std::vector<const Node*> ancestors;
+      if (name == "DeviceInfo") {
+        locate(doc, root);
+        forEachChild(doc, root, "DeviceInfo", [&](xmlNode* child) {
+          if (nameOf(child) == "ROUTE") readRoute(doc, child);
+          else readAndAttach(doc, child, target, "Scene", ancestors);
+        });
+      } else {
+        readAndAttach(doc, root, target, "Scene", ancestors);
+      }
+      return;
+    }
+    sink_.error(locate(doc, root), "the root element is <" + name +
+                                       ">; expected <X3D>, or a <Scene> or node element (e.g. <Group>) as H3DLoad reads");
+  }
+
+  // The element children of `parent`, with the children of any <DeviceInfo>
+  // in its place: H3DAPI's DeviceInfo only groups the scene's devices, and
+  // MillSim's device nodes work the same inside it as outside.
+  // Visits in document order, as the source locator's cursor needs.
+  template <class Visit> void forEachChild(Document& doc, xmlNode* parent, std::string_view label, Visit&& visit) {
+    for (xmlNode* c = parent->children; c && !sink_.full(); c = c->next) {
+      if (!checkNonElement(doc, c, label)) continue;
+      if (nameOf(c) != "DeviceInfo") {
+        visit(c);
+        continue;
+      }
+      std::size_t tag;
+      SourceLocation loc = locate(doc, c, &tag);
+      for (const xmlAttr* a = c->properties; a; a = a->next) {
+        std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
+        if (!a->ns && n != "containerField" && n != "class" && n != "id")
+          sink_.warning(locateAttr(doc, tag, n, loc), "attribute '" + std::string(n) +
+                                                          "' of <DeviceInfo> ignored: MillSim reads DeviceInfo only "
+                                                          "as a group of device nodes");
+      }
+      forEachChild(doc, c, "DeviceInfo", visit);
+    }
   }
 
   void readHead(Document& doc, xmlNode* head, bool isMainFile) {
@@ -216,10 +277,36 @@ private:
         const xmlAttr* name = findAttr(c, "name");
         const xmlAttr* content = findAttr(c, "content");
         if (isMainFile && name) scene_->meta.emplace_back(attrValue(doc.xml, name), content ? attrValue(doc.xml, content) : "");
-      } else if (n != "component" && n != "unit") {
+      } else if (n == "unit") {
+        readUnit(doc, c, tag, loc);
+      } else if (n != "component") {
         sink_.error(loc, "unexpected <" + std::string(n) + "> inside <head>; expected <meta>, <component> or <unit>");
       }
     }
+  }
+
+  // MillSim reads every value in SI units and does not convert yet: a unit
+  // other than the SI one is refused rather than ignored.
+  void readUnit(Document& doc, xmlNode* el, std::size_t tag, const SourceLocation& loc) {
+    UnitStatement u;
+    const xmlAttr* attrs[3] = {findAttr(el, "category"), findAttr(el, "name"), findAttr(el, "conversionFactor")};
+    if (attrs[0]) u.category = attrValue(doc.xml, attrs[0]);
+    if (attrs[1]) u.name = attrValue(doc.xml, attrs[1]);
+    if (attrs[2]) u.conversionFactor = attrValue(doc.xml, attrs[2]);
+    if (auto bad = invalidUnit(u)) {
+      const char* culprit = bad->rfind("unit category", 0) == 0 ? "category"
+                            : bad->find("needs a name") != std::string::npos ? "name"
+                                                                              : "conversionFactor";
+      sink_.error(locateAttr(doc, tag, culprit, loc), "invalid <unit> statement: " + *bad);
+      return;
+    }
+    if (unitFactor(u) == 1.0) return;  // the SI unit itself changes nothing
+    static const std::map<std::string, std::string, std::less<>> si = {
+        {"angle", "radians"}, {"force", "newtons"}, {"length", "metres"}, {"mass", "kilograms"}};
+    sink_.error(loc, "<unit category='" + u.category + "' name='" + u.name + "' conversionFactor='" +
+                         u.conversionFactor + "'> is not supported: MillSim does not convert " + u.category +
+                         " values yet and reads them in " + si.at(u.category) +
+                         "; write the values in SI units and remove the statement");
   }
 
   // Comments and whitespace are fine anywhere; other text is a mistake.
@@ -285,7 +372,7 @@ private:
     }
     std::shared_ptr<Node> node = scene_->registry.create(type);
     if (!node) {
-      sink_.error(loc, "unknown node type '" + type + "'" + didYouMean(scene_->registry.suggest(type)));
+      unknownNode(doc, el, type, loc);
       return nullptr;
     }
     node->setLocation(loc);
@@ -294,11 +381,14 @@ private:
       std::string name = attrValue(doc.xml, def);
       SourceLocation defLoc = locateAttr(doc, tag, "DEF", loc);
       if (name.empty() || isBlank(name)) {
-        sink_.error(defLoc, "empty DEF name");
-      } else if (auto prev = doc.defs->find(name); prev != doc.defs->end()) {
-        sink_.error(defLoc, "DEF name '" + name + "' is already used by the " + prev->second->typeName() + " at " +
-                                prev->second->location().str());
+        sink_.warning(defLoc, "empty DEF name ignored; the " + type + " has no name");
       } else {
+        // As in H3DAPI, a later DEF of the same name wins (for later USEs and ROUTEs).
+        if (auto prev = doc.defs->find(name); prev != doc.defs->end())
+          sink_.warning(defLoc, "DEF name '" + name + "' is already used by the " + prev->second->typeName() + " at " +
+                                    prev->second->location().str() + "; this " + type +
+                                    " takes the name for what follows (as in H3DAPI)");
+        doc.skippedDefs.erase(name);
         node->setDefName(name);
         (*doc.defs)[name] = node;
       }
@@ -309,26 +399,65 @@ private:
     if (auto* lib = dynamic_cast<ImportLibrary*>(node.get())) importLibrary(doc, *lib, loc);
 
     ancestors.push_back(node.get());
-    for (xmlNode* c = el->children; c && !sink_.full(); c = c->next) {
-      if (!checkNonElement(doc, c, type)) continue;
+    forEachChild(doc, el, type, [&](xmlNode* c) {
       if (nameOf(c) == "ROUTE") {
         readRoute(doc, c);
-        continue;
+        return;
       }
       std::size_t childTag;
       SourceLocation childLoc = locate(doc, c, &childTag);
       std::shared_ptr<Node> child = readNode(doc, c, childTag, childLoc, ancestors);
-      if (!child) continue;
+      if (!child) return;
       // containerField chooses the parent field; otherwise the child type's default.
       std::string fieldName = child->nodeType().containerField;
       if (const xmlAttr* cf = findAttr(c, "containerField")) fieldName = attrValue(doc.xml, cf);
       placeChild(doc, *node, child, fieldName, childTag, childLoc);
-    }
+    });
     ancestors.pop_back();
 
     if (auto* inl = dynamic_cast<Inline*>(node.get())) loadInline(doc, *inl, loc);
     node->initialize(sink_);
     return node;
+  }
+
+  // A name the registry does not know: a standard X3D node MillSim does not
+  // implement is skipped with a warning (and its subtree with it); an H3DAPI
+  // node says what MillSim has instead; anything else is an error.
+  void unknownNode(Document& doc, xmlNode* el, const std::string& type, const SourceLocation& loc) {
+    if (findStandardNode(type)) {
+      sink_.warning(loc, "X3D node '" + type + "' is not supported by MillSim; ignored");
+      skipSubtree(doc, el);
+      return;
+    }
+    if (const H3dNodeName* h3d = findH3dNode(type)) {
+      std::string offer;
+      if (h3d->kind != H3dNodeKind::Other) {
+        std::vector<std::string> names;
+        for (const NodeType* t : scene_->registry.all()) {
+          // Renderers fill a device's hapticsRenderer field; devices are in the devices component.
+          const bool match = h3d->kind == H3dNodeKind::Renderer ? t->containerField == "hapticsRenderer"
+                                                                : t->component.find("devices") != std::string::npos;
+          if (match) names.push_back(t->name);
+        }
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        offer = std::string("; its ") + (h3d->kind == H3dNodeKind::Renderer ? "haptics renderers" : "devices") +
+                " are " + list;
+      }
+      sink_.error(loc, "H3DAPI node '" + type + "' is not provided by MillSim" + offer);
+      return;
+    }
+    sink_.error(loc, "unknown node type '" + type + "'" + didYouMean(scene_->registry.suggest(type)));
+  }
+
+  // Remembers the DEF names inside a skipped element, so that their USEs and ROUTEs are skipped too.
+  void skipSubtree(Document& doc, xmlNode* el) {
+    if (el->type != XML_ELEMENT_NODE) return;
+    if (const xmlAttr* def = findAttr(el, "DEF")) {
+      const std::string name = attrValue(doc.xml, def);
+      if (!name.empty() && !doc.defs->count(name)) doc.skippedDefs[name] = std::string(nameOf(el));
+    }
+    for (xmlNode* c = el->children; c; c = c->next) skipSubtree(doc, c);
   }
 
   void placeChild(Document& doc, Node& parent, const std::shared_ptr<Node>& child, const std::string& fieldName,
@@ -365,6 +494,7 @@ private:
         return nullptr;
       }
     auto it = doc.defs->find(name);
+    if (it == doc.defs->end() && doc.skippedDefs.count(name)) return nullptr;  // its DEF was skipped, with a warning
     if (it == doc.defs->end()) {
       std::vector<std::string> names;
       for (const auto& [k, v] : *doc.defs) names.push_back(k);
@@ -389,7 +519,8 @@ private:
     for (const xmlAttr* a = el->properties; a && !sink_.full(); a = a->next) {
       if (a->ns) continue;  // namespaced attributes (xmlns:*, xsd:*) carry no field
       std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
-      if (n == "DEF" || n == "containerField" || n == "class") continue;
+      // X3D 4's id, class and style are for HTML pages and stylesheets; they set no field.
+      if (n == "DEF" || n == "containerField" || n == "class" || n == "id" || n == "style") continue;
       SourceLocation at = locateAttr(doc, tag, n, loc);
       Field* f = node.field(n);
       if (!f) {
@@ -413,11 +544,31 @@ private:
       try {
         f->setFromString(value);
       } catch (const ValueError& e) {
+        if (readUnquotedString(*f, value, node, at)) continue;
         std::string shown = value.size() > 40 ? value.substr(0, 37) + "..." : value;
         sink_.error(at, "bad value '" + shown + "' for " + std::string(fieldTypeName(f->type())) + " field '" +
                             std::string(n) + "' of " + node.typeName() + ": " + e.what());
       }
     }
+  }
+
+  // H3DAPI files often write one MFString item unquoted (url='Cylinder.x3d');
+  // H3DAPI and Castle read it as that one string, and so does MillSim, with a warning.
+  bool readUnquotedString(Field& f, const std::string& value, const Node& node, const SourceLocation& at) {
+    auto* mf = dynamic_cast<MFString*>(&f);
+    if (!mf || value.find('"') != std::string::npos || isBlank(value)) return false;
+    const std::size_t first = value.find_first_not_of(" \t\r\n");
+    const std::size_t last = value.find_last_not_of(" \t\r\n");
+    const std::string item = value.substr(first, last - first + 1);
+    try {
+      mf->set({item});
+    } catch (const ValueError&) {
+      return false;
+    }
+    sink_.warning(at, "unquoted MFString value for field '" + std::string(f.name()) + "' of " + node.typeName() +
+                          " read as the one string \"" + item + "\"; X3D quotes each item: " +
+                          std::string(f.name()) + "='\"" + item + "\"'");
+    return true;
   }
 
   // ---- ROUTE --------------------------------------------------------------------
@@ -450,6 +601,12 @@ private:
     Node* ends[2] = {nullptr, nullptr};
     for (int i = 0; i < 2; ++i) {
       auto it = doc.defs->find(v[2 * i]);
+      if (auto skipped = doc.skippedDefs.find(v[2 * i]); it == doc.defs->end() && skipped != doc.skippedDefs.end()) {
+        sink_.warning(locateAttr(doc, tag, names[2 * i], loc),
+                      "ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + " ignored: '" + v[2 * i] +
+                          "' is a " + skipped->second + ", which MillSim does not support");
+        return;
+      }
       if (it == doc.defs->end()) {
         std::vector<std::string> defNames;
         for (const auto& [k, n] : *doc.defs) defNames.push_back(k);
@@ -502,6 +659,10 @@ private:
         continue;
       }
       fs::path p = fs::path(url).is_absolute() ? fs::path(url) : doc.dir / url;
+      if (auto unsupported = unsupportedEncoding(p)) {
+        tried += "\n  " + *unsupported;
+        continue;
+      }
       std::error_code ec;
       if (!fs::is_regular_file(p, ec)) {
         tried += "\n  " + p.string() + ": no such file";
@@ -524,7 +685,7 @@ private:
       }
       inlineStack_.push_back(canonical);
       std::map<std::string, std::shared_ptr<Node>, std::less<>> privateDefs;
-      Document sub{SourceText(p.string(), std::move(text)), nullptr, p.parent_path(), &privateDefs};
+      Document sub{SourceText(p.string(), std::move(text)), nullptr, p.parent_path(), &privateDefs, {}};
       if (parseXml(sub)) readTopLevel(sub, inl.loaded, false);
       inlineStack_.pop_back();
       return;
@@ -537,12 +698,14 @@ private:
       sink_.error(loc, "ImportLibrary is disabled for this load (no file access)");
       return;
     }
-    if (lib.url.get().empty()) {
-      sink_.error(loc, "ImportLibrary has an empty url");
+    std::vector<std::string> urls = lib.url.get();
+    urls.insert(urls.end(), lib.library.get().begin(), lib.library.get().end());
+    if (urls.empty()) {
+      sink_.error(loc, "ImportLibrary has an empty url (and no H3DAPI-style library)");
       return;
     }
     std::string tried;
-    for (const std::string& url : lib.url.get()) {
+    for (const std::string& url : urls) {
       fs::path file;
       try {
         file = resolvePlugin(url, doc.dir, options_.plugins);
@@ -566,25 +729,10 @@ private:
   }
 
   bool readFile(const fs::path& p, std::string& out, const SourceLocation& loc) {
-    std::error_code ec;
-    auto size = fs::file_size(p, ec);
-    if (ec) {
-      sink_.error(loc, "cannot read '" + p.string() + "': " + ec.message());
+    if (auto problem = readSceneText(p, options_.maxFileBytes, out)) {
+      sink_.error(loc, *problem);
       return false;
     }
-    if (size > options_.maxFileBytes) {
-      sink_.error(loc, "'" + p.string() + "' is " + std::to_string(size) + " bytes; X3D files over " +
-                           std::to_string(options_.maxFileBytes) + " bytes are refused");
-      return false;
-    }
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (!in) {
-      sink_.error(loc, "cannot read '" + p.string() + "'");
-      return false;
-    }
-    out = ss.str();
     return true;
   }
 
@@ -613,6 +761,7 @@ LoadResult loadSceneFile(const fs::path& file, const NodeRegistry& registry, con
   std::error_code ec;
   if (!fs::exists(file, ec)) return fileError(file, "no such file");
   if (!fs::is_regular_file(file, ec)) return fileError(file, "not a regular file");
+  if (auto unsupported = unsupportedEncoding(file)) return fileError(file, unsupported->c_str());
   std::string text;
   if (!loader.readFile(file, text, {file.string(), 0, 0})) return {nullptr, loader.sink_.take()};
   fs::path canonical = fs::weakly_canonical(file, ec);

@@ -37,6 +37,21 @@ TEST(Plugins, NodeFromAPluginFoundOnTheSearchPath) {
   EXPECT_EQ(builtinRegistry().find("Landmark"), nullptr);
 }
 
+// H3DAPI writes ImportLibrary library="..." (unquoted, one name): read as url, with a warning for the quotes.
+TEST(Plugins, H3dApiLibraryFieldLoadsWithTheSamePathRules) {
+  ScratchDir dir;
+  auto scene = dir.write("s.x3d", x3d(R"(<ImportLibrary library="libmillsim_sample_plugin.so"/><Landmark/>)"));
+  auto r = loadSceneFile(scene, builtinRegistry(), withSearchPath({kPluginDir}));
+  ASSERT_TRUE(r.ok()) << r.report();
+  EXPECT_EQ(r.scene->plugins.size(), 1u);
+  EXPECT_NE(r.report().find("unquoted MFString value for field 'library'"), std::string::npos) << r.report();
+  const std::string abs = (kPluginDir / kPlugin).string();
+  auto absScene = dir.write("abs.x3d", x3d("<ImportLibrary library='\"" + abs + "\"'/>"));
+  auto refused = loadSceneFile(absScene, builtinRegistry(), withSearchPath({}));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.report().find("refusing plugin path"), std::string::npos) << refused.report();
+}
+
 TEST(Plugins, ShortNamesAreExpandedAndTheSceneFolderIsSearched) {
   ScratchDir dir;
   std::filesystem::copy_file(kPluginDir / kPlugin, dir.path() / kPlugin);

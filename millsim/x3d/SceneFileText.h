@@ -1,0 +1,20 @@
+#pragma once
+// Reading the text of a scene file: the XML encoding only (the ClassicVRML
+// and JSON encodings are refused by name), gzip-compressed (.x3d.gz, .x3dz,
+// or any file starting with gzip's magic bytes) or plain.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace millsim {
+
+// A message when `file` names an X3D encoding MillSim does not read
+// (.x3dv, .x3dvz, .x3dj, .wrl), else nullopt.
+std::optional<std::string> unsupportedEncoding(const std::filesystem::path& file);
+
+// Reads `file` into `out`, inflating gzip data. Returns an error message, or
+// nullopt on success. Neither the file nor its inflated text may exceed `maxBytes`.
+std::optional<std::string> readSceneText(const std::filesystem::path& file, std::uintmax_t maxBytes, std::string& out);
+
+}  // namespace millsim
