@@ -4,6 +4,7 @@
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
 
+#include <map>
 #include <set>
 
 #include "millsim/std/ImportLibrary.h"
@@ -425,7 +426,13 @@ private:
   // node says what MillSim has instead; anything else is an error.
   void unknownNode(Document& doc, xmlNode* el, const std::string& type, const SourceLocation& loc) {
     if (findStandardNode(type)) {
-      sink_.warning(loc, "X3D node '" + type + "' is not supported by MillSim; ignored");
+      // A scene of a thousand Cones should not print a thousand lines.
+      const int seen = ++unsupportedSeen_[type];
+      if (seen <= kWarningsPerUnsupportedType)
+        sink_.warning(loc, "X3D node '" + type + "' is not supported by MillSim; ignored" +
+                               (seen == kWarningsPerUnsupportedType
+                                    ? " (further '" + type + "' nodes are ignored without a warning)"
+                                    : std::string()));
       skipSubtree(doc, el);
       return;
     }
@@ -740,6 +747,8 @@ private:
   DiagnosticSink sink_;
   std::unique_ptr<Scene> scene_;
   std::vector<fs::path> inlineStack_;
+  static constexpr int kWarningsPerUnsupportedType = 10;
+  std::map<std::string, int> unsupportedSeen_;  // warnings given per unsupported type
 
   friend LoadResult millsim::loadSceneFile(const fs::path&, const NodeRegistry&, const LoadOptions&);
 };

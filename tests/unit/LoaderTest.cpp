@@ -125,6 +125,20 @@ TEST(Loader, UnknownNamesGetSuggestions) {
   EXPECT_EQ(firstError(f).where.column, 12);
 }
 
+TEST(Loader, UnsupportedStandardNodesWarnAtMostTenTimesPerType) {
+  std::string shapes;
+  for (int i = 0; i < 25; ++i) shapes += "<Shape><Cone/></Shape>";
+  auto r = load(x3d(shapes + "<Shape><Text/></Shape>"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  int cones = 0, texts = 0;
+  for (const auto& d : r.diagnostics) {
+    cones += d.message.find("'Cone'") != std::string::npos;
+    texts += d.message.find("'Text'") != std::string::npos;
+  }
+  EXPECT_EQ(cones, 10) << r.report();
+  EXPECT_EQ(texts, 1) << "each type has its own count";
+}
+
 TEST(Loader, SeveralErrorsAreReportedTogether) {
   auto r = load(x3d(R"(<Transform translation="x"/><Sphere/><Group bboxSize="1"/>)"));
   ASSERT_FALSE(r.ok());
