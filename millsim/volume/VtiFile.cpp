@@ -43,27 +43,40 @@ using vtkio::VtkMessages;
 // whose markup never ends (a 1 GB attribute, millions of elements) would cost
 // that much before VTK could complain. Real .vti markup is a few kilobytes:
 // stream the file up to <AppendedData> (VTK's parser stops there too) and
-// count the bytes inside '<' … '>'; text between tags is inline array data and
-// is bounded by the size check below instead.
+// count the bytes of tags and comments (a '>' inside a quoted attribute value
+// does not end a tag); text between tags is inline array data and is bounded
+// by the size check below instead.
 void checkMarkupSize(std::istream& in, const std::string& name) {
   static const std::string kAppended = "<AppendedData";
   std::vector<char> buf(1 << 16);
   std::uintmax_t markup = 0;
-  bool inTag = false;
-  std::size_t matched = 0;  // characters of kAppended seen so far
+  enum class In { Text, Tag, Comment } where = In::Text;
+  char quote = 0;               // in a tag: the quote of the attribute value we are in, if any
+  std::size_t matched = 0;      // characters of kAppended seen so far (in text)
+  std::size_t tagChars = 0;     // characters of the current tag so far
+  char last[4] = {0, 0, 0, 0};  // the last four characters, to see "<!--" and "-->"
   while (in) {
     in.read(buf.data(), std::streamsize(buf.size()));
     const std::size_t got = std::size_t(in.gcount());
     for (std::size_t i = 0; i < got; ++i) {
       const char c = buf[i];
-      matched = c == kAppended[matched] ? matched + 1 : (c == '<' ? 1 : 0);
-      if (matched == kAppended.size()) return;
-      if (c == '<') inTag = true;
-      if (inTag && ++markup > kMaxHeaderBytes)
-        throw VolumeError(name + ": the VTK XML markup (elements and attributes, not array data) passes " +
+      last[0] = last[1], last[1] = last[2], last[2] = last[3], last[3] = c;
+      if (where == In::Text) {
+        matched = c == kAppended[matched] ? matched + 1 : (c == '<' ? 1 : 0);
+        if (matched == kAppended.size()) return;
+        if (c == '<') where = In::Tag, tagChars = 0, quote = 0;
+      } else if (where == In::Tag) {
+        // Quotes in a comment mean nothing: "<!--" makes the rest a comment.
+        if (++tagChars == 3 && last[0] == '<' && last[1] == '!' && last[2] == '-' && last[3] == '-') where = In::Comment;
+        else if (c == '"' || c == '\'') quote = quote == 0 ? c : (quote == c ? 0 : quote);
+        else if (c == '>' && quote == 0) where = In::Text;
+      } else if (last[1] == '-' && last[2] == '-' && last[3] == '>') {
+        where = In::Text;
+      }
+      if ((where != In::Text || c == '>') && ++markup > kMaxHeaderBytes)
+        throw VolumeError(name + ": the VTK XML markup (elements, attributes and comments; not array data) passes " +
                           std::to_string(kMaxHeaderBytes) +
                           " bytes (1 MiB, the most MillSim reads of a header); is this a .vti file?");
-      if (c == '>') inTag = false;
     }
   }
 }

@@ -555,6 +555,21 @@ TEST(VolumeIOVti, HandWrittenAscii) {
   expectPattern(loaded.volume, d, glm::dvec3(1.0, 1.0, 1.5));
 }
 
+// The 1 MiB markup cap counts tags and comments, not inline array data: a
+// file with 1.3 MB of inline values, a comment with an apostrophe and a '>'
+// in a quoted attribute loads.
+TEST(VolumeIOVti, MarkupCapLeavesInlineDataAlone) {
+  ScratchDir dir;
+  const glm::ivec3 d(400, 400, 4);
+  const auto v = patternValues(d);
+  std::string text = vtiFile(d, "0.5 0.25 2", asciiValues(v));
+  ASSERT_GT(text.size(), std::size_t(1) << 20);
+  text.insert(text.find("<ImageData"), "<!-- it's a \"test\" > -->\n");
+  text.insert(text.find("byte_order="), "Note=\"a > b\" ");
+  const auto f = dir.write("big.vti", text);
+  expectPattern(readVti(f, kAir), d, glm::dvec3(0.5, 0.25, 2.0));
+}
+
 namespace {
 // A .vti with the values as appended raw binary (UInt32 byte count, then little-endian int16).
 std::string vtiAppended(glm::ivec3 d, const std::vector<float>& v) {

@@ -97,9 +97,9 @@ def vti(name, compressor):
 """)
 
 
-# VTK XML markup that never ends: a 2 MiB attribute before any data.
+# VTK XML markup that never ends: a 2 MiB attribute (with a '>' in it) before any data.
 with open(replace(os.path.join(out, "endless-markup.vti")), "w") as f:
-    f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="1.0" Note="' + "x" * (2 << 20) +
+    f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="1.0" Note="> ' + "x" * (2 << 20) +
             '">\n</VTKFile>\n')
 scene("vti-endless-markup", "endless-markup.vti")
 
