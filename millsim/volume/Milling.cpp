@@ -28,15 +28,28 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
   const glm::ivec3 dims = volume_.dims();
   const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(c - reach)), glm::ivec3(0));
   const glm::ivec3 hi = glm::min(glm::ivec3(glm::ceil(c + reach)), dims - 1);
+  // The reach padded by a voxel: rows and runs are chosen generously, so
+  // rounding never drops a voxel the per-voxel test would keep.
+  const double padded = radius + 0.5 * ramp + std::max({h.x, h.y, h.z});
+  const double reach2 = padded * padded;
   for (int k = lo.z; k <= hi.z; ++k)
-    for (int j = lo.y; j <= hi.y; ++j)
-      for (int i = lo.x; i <= hi.x; ++i) {
-        const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
-        const double coverage = std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0);
-        if (coverage <= 0.0) continue;
+    for (int j = lo.y; j <= hi.y; ++j) {
+      // Only the run of the row the (padded) reach crosses: a stamp visits
+      // about half the voxels of its box, and the test below still decides.
+      const double dy = (j - c.y) * h.y, dz = (k - c.z) * h.z;
+      const double chord2 = reach2 - dy * dy - dz * dz;
+      if (chord2 < 0.0) continue;
+      const double half = std::sqrt(chord2) / h.x;
+      const int rowLo = std::max(lo.x, int(std::floor(c.x - half))), rowHi = std::min(hi.x, int(std::ceil(c.x + half)));
+      for (int i = rowLo; i <= rowHi; ++i) {
+        // Air first: once the burr has sunk in, most of its sphere is air
+        // already, and a cached read is cheaper than the distance below.
         const openvdb::Coord xyz(i, j, k);
         const float old = acc_.getValue(xyz);
         if (old <= air) continue;  // nothing to remove (and air may live in a tile: never write there)
+        const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
+        const double coverage = std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0);
+        if (coverage <= 0.0) continue;
         // The density that leaves the voxel a (1 − coverage) material fraction:
         // on the sphere's surface (coverage ½) that is exactly the iso-value.
         const float now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
@@ -46,6 +59,7 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
         ++result.voxelsChanged;
         dirty.markVoxel(i, j, k);
       }
+    }
   totalRemoved_ += result.removedVolume;
   return result;
 }
