@@ -41,23 +41,38 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
       if (chord2 < 0.0) continue;
       const double half = std::sqrt(chord2) / h.x;
       const int rowLo = std::max(lo.x, int(std::floor(c.x - half))), rowHi = std::min(hi.x, int(std::ceil(c.x + half)));
-      for (int i = rowLo; i <= rowHi; ++i) {
-        // Air first: once the burr has sunk in, most of its sphere is air
-        // already, and a cached read is cheaper than the distance below.
-        const openvdb::Coord xyz(i, j, k);
-        const float old = acc_.getValue(xyz);
-        if (old <= air) continue;  // nothing to remove (and air may live in a tile: never write there)
-        const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
-        const double coverage = std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0);
-        if (coverage <= 0.0) continue;
-        // The density that leaves the voxel a (1 − coverage) material fraction:
-        // on the sphere's surface (coverage ½) that is exactly the iso-value.
-        const float now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
-        if (now >= old) continue;
-        acc_.setValueOnly(xyz, now);
-        result.removedVolume += (phi(old) - phi(now)) * voxelVolume;
-        ++result.voxelsChanged;
-        dirty.markVoxel(i, j, k);
+      // Leaf by leaf along the run, in the same voxel order as one by one
+      // (so the removed volume sums identically): a leaf's buffer is read and
+      // written directly, which is what setValueOnly does, without a lookup
+      // per voxel (through the accessor those were half the stamp's time).
+      using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
+      for (int seg = rowLo; seg <= rowHi; seg = (seg & ~7) + 8) {
+        const int segHi = std::min(rowHi, (seg & ~7) + 7);
+        Leaf* leaf = acc_.probeLeaf(openvdb::Coord(seg, j, k));
+        // No leaf: a tile. Air (the usual case) has nothing to remove; a
+        // dense tile goes through the accessor, which makes a leaf of it.
+        if (!leaf && acc_.getValue(openvdb::Coord(seg, j, k)) <= air) continue;
+        float* data = leaf ? leaf->buffer().data() : nullptr;
+        const int rowOffset = ((j & 7) << 3) + (k & 7);
+        for (int i = seg; i <= segHi; ++i) {
+          // Air first: once the burr has sunk in, most of its sphere is air
+          // already, and a read is cheaper than the distance below.
+          const openvdb::Coord xyz(i, j, k);
+          const float old = data ? data[((i & 7) << 6) + rowOffset] : acc_.getValue(xyz);
+          if (old <= air) continue;  // nothing to remove
+          const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
+          const double coverage = std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0);
+          if (coverage <= 0.0) continue;
+          // The density that leaves the voxel a (1 − coverage) material fraction:
+          // on the sphere's surface (coverage ½) that is exactly the iso-value.
+          const float now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
+          if (now >= old) continue;
+          if (data) data[((i & 7) << 6) + rowOffset] = now;
+          else acc_.setValueOnly(xyz, now);
+          result.removedVolume += (phi(old) - phi(now)) * voxelVolume;
+          ++result.voxelsChanged;
+          dirty.markVoxel(i, j, k);
+        }
       }
     }
   totalRemoved_ += result.removedVolume;
