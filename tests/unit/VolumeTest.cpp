@@ -328,7 +328,9 @@ TEST(PointShell, IncrementalUpdateEqualsRebuildAfterRandomMilling) {
     removed += scene.mill(c, radius(rng));
     scene.pointShell(0, 1);                         // in use: follows every stamp
     if (stamp % 7 == 0) scene.pointShell(0, 2);     // looked at now and then
-    if (stamp % 30 == 29) ASSERT_NO_FATAL_FAILURE(compare(3, stamp));
+    if (stamp % 30 == 29) {
+      ASSERT_NO_FATAL_FAILURE(compare(3, stamp));
+    }
   }
   EXPECT_GT(removed, 0.0);
   for (int s : scales) ASSERT_NO_FATAL_FAILURE(compare(s, 120));  // scale 6 was dormant throughout
