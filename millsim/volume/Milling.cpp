@@ -28,9 +28,11 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
   const glm::ivec3 dims = volume_.dims();
   const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(c - reach)), glm::ivec3(0));
   const glm::ivec3 hi = glm::min(glm::ivec3(glm::ceil(c + reach)), dims - 1);
-  // The reach padded by a voxel: rows and runs are chosen generously, so
-  // rounding never drops a voxel the per-voxel test would keep.
-  const double padded = radius + 0.5 * ramp + std::max({h.x, h.y, h.z});
+  // The reach padded by a thousandth of a voxel, far above the rounding of
+  // the distances: rows and runs are chosen generously, so they never drop a
+  // voxel the per-voxel test would keep (a whole voxel of padding visited
+  // half as many voxels again).
+  const double padded = radius + 0.5 * ramp + 1e-3 * std::max({h.x, h.y, h.z});
   const double reach2 = padded * padded;
   for (int k = lo.z; k <= hi.z; ++k)
     for (int j = lo.y; j <= hi.y; ++j) {
