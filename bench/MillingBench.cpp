@@ -100,4 +100,29 @@ BENCHMARK(BM_MillingFrame)->Args({2, 1})->Iterations(20)->UseManualTime()->Unit(
 BENCHMARK(BM_MillingFrame)->Args({3, 0})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MillingFrame)->Args({3, 1})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
+// The price of a dormant shell: Barbic's coarse fallback (scale 2s) or a
+// renderer waiting in a RendererPool merges, when it is next asked for,
+// everything milled since. args: scale of the dormant shell, frames milled
+// while it slept (the burr path above). Manual time: the catch-up alone.
+void BM_DormantCatchUp(benchmark::State& state) {
+  const int scale = int(state.range(0));
+  const long frames = long(state.range(1));
+  for (auto _ : state) {
+    VoxelVolume volume = makeToothPhantom(ToothPhantomOptions{});
+    VoxelScene scene;
+    scene.addVolume(volume, glm::dmat4(1.0), 700.0);
+    scene.pointShell(0, scale);
+    for (long n = 0; n < frames; ++n) scene.mill(burrAt(n), kBurr);
+    const double c0 = cpuMicros();
+    benchmark::DoNotOptimize(scene.pointShell(0, scale).size());
+    state.SetIterationTime((cpuMicros() - c0) * 1e-6);
+  }
+}
+BENCHMARK(BM_DormantCatchUp)
+    ->ArgNames({"scale", "frames"})
+    ->ArgsProduct({{2, 6}, {300, 1000, 4000}})
+    ->Iterations(3)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+
 }  // namespace
