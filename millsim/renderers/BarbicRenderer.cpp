@@ -35,6 +35,7 @@ public:
     // The scene builds the shells on first request: here, on the scene thread, not in step().
     shells_.resize(scene.volumeCount());
     followMilling(scene);
+    for (std::size_t i = 0; i < shells_.size(); ++i) scene.pointShell(i, 2 * p_.scale);
   }
 
   std::string name() const override { return "BarbicRenderer"; }
@@ -60,7 +61,7 @@ public:
     // 1–2. Contacts at the current tool pose, and the coupling spring.
     acc_.clear();
     addCouplingSpring(acc_, p_.coupling, tool_, device);
-    out.contacts = gatherContacts(out.flags);
+    out.contacts = gatherContacts(scene, out.flags);
 
     // 3. The 6×6 solve (quasi-static: net wrench zero after the step).
     Vec6 deviceVelocity;
@@ -114,16 +115,16 @@ private:
   struct Shells {
     const HapticScene::Placement* placement = nullptr;
     const PointShell* fine = nullptr;
-    const PointShell* coarse = nullptr;
   };
 
-  // Both shells of every volume, brought up to date with the milling since the
-  // last frame (the coarse one too, so a fallback never finds it stale).
+  // Every volume's shell, brought up to date with the milling since the last
+  // frame. The coarse fallback shell (scale 2s) is asked for only in a frame
+  // that falls back to it: the scene keeps it current then, and a milling
+  // frame does not pay for a shell it does not use.
   void followMilling(HapticScene& scene) {
     for (std::size_t i = 0; i < shells_.size(); ++i) {
       shells_[i].placement = &scene.placement(i);
       shells_[i].fine = &scene.pointShell(i, p_.scale);
-      shells_[i].coarse = &scene.pointShell(i, 2 * p_.scale);
     }
   }
 
@@ -141,15 +142,17 @@ private:
 
   // Penalty contacts of every shell point inside the tool, into acc_. Uses
   // the coarse shell when the fine one would exceed the budgets.
-  int gatherContacts(std::uint32_t& flags) {
+  int gatherContacts(HapticScene& scene, std::uint32_t& flags) {
     const glm::dmat3 R = glm::mat3_cast(tool_.orientation), Rt = glm::transpose(R);
     int contacts = 0;
-    for (const Shells& s : shells_) {
+    for (std::size_t i = 0; i < shells_.size(); ++i) {
+      const Shells& s = shells_[i];
+      auto coarse = [&] { return &scene.pointShell(i, 2 * p_.scale); };
       const auto& v = *s.placement;
       const Obb box = toolBox(v, tool_, 0.0);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
       const PointShell* shell = s.fine;
-      if (p_.culling && shell->countCandidates(overlaps) > p_.maxTested) shell = s.coarse, flags |= kFlagCoarseFallback;
+      if (p_.culling && shell->countCandidates(overlaps) > p_.maxTested) shell = coarse(), flags |= kFlagCoarseFallback;
       for (int attempt = 0; attempt < 2; ++attempt) {
         const double k = p_.contactK * double(shell->scale() * shell->scale());
         const Wrench6 before = acc_;
@@ -168,9 +171,9 @@ private:
         };
         if (p_.culling) shell->forEachCandidate(overlaps, test);
         else shell->forEach(test);
-        if (full && shell == s.fine && s.coarse != s.fine) {
+        if (full && shell == s.fine) {
           acc_ = before;  // too many contacts: redo with the coarse shell
-          shell = s.coarse;
+          shell = coarse();
           flags |= kFlagCoarseFallback;
           continue;
         }

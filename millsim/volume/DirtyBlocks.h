@@ -38,6 +38,24 @@ public:
     list_.emplace_back(bx << kLog2, by << kLog2, bz << kLog2);
   }
 
+  // Adds the blocks and the voxel box another set (of a volume with the same
+  // dimensions) marked: a consumer that merges several calls' changes at once.
+  void add(const DirtyBlocks& other) {
+    for (const BlockOrigin& o : other.list_) {
+      const std::size_t idx = index(o);
+      if (bits_[idx]) continue;
+      bits_[idx] = true;
+      list_.push_back(o);
+    }
+    voxelLo_ = glm::min(voxelLo_, other.voxelLo_), voxelHi_ = glm::max(voxelHi_, other.voxelHi_);
+  }
+  // Whether the block holding voxel (i, j, k) is marked (false outside the volume).
+  bool markedVoxel(int i, int j, int k) const {
+    const int bx = i >> kLog2, by = j >> kLog2, bz = k >> kLog2;
+    if (i < 0 || j < 0 || k < 0 || bx >= blocks_.x || by >= blocks_.y || bz >= blocks_.z) return false;
+    return bits_[(std::size_t(bz) * blocks_.y + by) * blocks_.x + bx];
+  }
+
   // Leaf origins marked so far, in the order they were first marked.
   const std::vector<BlockOrigin>& origins() const { return list_; }
   bool empty() const { return list_.empty(); }
@@ -60,9 +78,10 @@ public:
   }
 
 private:
-  void unmark(const BlockOrigin& c) {
-    bits_[(std::size_t(c.z >> kLog2) * blocks_.y + (c.y >> kLog2)) * blocks_.x + (c.x >> kLog2)] = false;
+  std::size_t index(const BlockOrigin& c) const {
+    return (std::size_t(c.z >> kLog2) * blocks_.y + (c.y >> kLog2)) * blocks_.x + (c.x >> kLog2);
   }
+  void unmark(const BlockOrigin& c) { bits_[index(c)] = false; }
   glm::ivec3 blocks_{0};
   std::vector<bool> bits_;
   std::vector<BlockOrigin> list_;

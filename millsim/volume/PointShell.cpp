@@ -3,6 +3,7 @@
 #include "millsim/volume/VoxelVolume.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 
@@ -204,7 +205,29 @@ int PointShell::update(const VoxelVolume& volume, const DirtyBlocks& dirty) {
   if (dirty.empty()) return 0;
   int rebuilt = 0;
   if (updateRegion(volume, dirty.voxelLo(), dirty.voxelHi(), rebuilt)) return rebuilt;
-  return update(volume, dirty.origins());
+  // The changes of many stamps (a shell that was not looked at for a while)
+  // outgrow the scratch space: cover their box with cubes whose fine region
+  // fits (edge + 6s + 2 fine voxels with the stencils' margins) and update
+  // the cubes that hold a marked block. The volume is already in its final
+  // state, so cube by cube gives what one pass over the box would.
+  const int edge = (int(std::cbrt(double(kScratchVoxels)) + 0.5) - 6 * scale_ - 2) / 8 * 8;
+  if (edge >= 8) {
+    const glm::ivec3 lo = dirty.voxelLo(), hi = dirty.voxelHi();
+    bool fits = true;
+    for (int z = lo.z & ~7; z <= hi.z && fits; z += edge)
+      for (int y = lo.y & ~7; y <= hi.y && fits; y += edge)
+        for (int x = lo.x & ~7; x <= hi.x && fits; x += edge) {
+          bool marked = false;
+          for (int k = z; k < z + edge && !marked; k += 8)
+            for (int j = y; j < y + edge && !marked; j += 8)
+              for (int i = x; i < x + edge && !marked; i += 8) marked = dirty.markedVoxel(i, j, k);
+          if (!marked) continue;
+          const glm::ivec3 t(x, y, z);
+          fits = updateRegion(volume, glm::max(t, lo), glm::min(t + edge - 1, hi), rebuilt);
+        }
+    if (fits) return rebuilt;
+  }
+  return rebuilt + update(volume, dirty.origins());
 }
 
 bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::ivec3 vhi, int& rebuilt) {
@@ -234,16 +257,27 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
       for (int ox = fLo.x & ~7; ox <= fHi.x; ox += 8) {
         const openvdb::Coord origin(ox, oy, oz);
         const Leaf* leaf = tree.probeConstLeaf(origin);
-        const float tile = leaf ? 0.f : tree.getValue(origin);
         const glm::ivec3 lo = glm::max(glm::ivec3(ox, oy, oz), fLo), hi = glm::min(glm::ivec3(ox, oy, oz) + 7, fHi);
+        if (!leaf) {  // a tile: one value for the whole block
+          const float tile = tree.getValue(origin);
+          for (int k = lo.z; k <= hi.z; ++k)
+            for (int j = lo.y; j <= hi.y; ++j) {
+              float* row = &fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x - fLo.x];
+              std::fill(row + lo.x, row + hi.x + 1, tile);
+            }
+          continue;
+        }
+        // The leaf's values straight from its buffer (z fastest, then y, then
+        // x): no per-voxel lookup; this copy is most of an update's time.
+        const float* data = leaf->buffer().data();
         for (int k = lo.z; k <= hi.z; ++k)
           for (int j = lo.y; j <= hi.y; ++j) {
             float* row = &fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x - fLo.x];
-            for (int i = lo.x; i <= hi.x; ++i)
-              row[i] = leaf ? leaf->getValue(Leaf::coordToOffset(openvdb::Coord(i, j, k))) : tile;
+            const float* column = data + ((j & 7) << 3) + (k & 7);
+            for (int i = lo.x; i <= hi.x; ++i) row[i] = column[(i & 7) << 6];
           }
       }
-  auto fine = [&](int i, int j, int k) {
+  auto fine = [&](int i, int j, int k) -> const float& {
     return fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x + (i - fLo.x)];
   };
   // Coarse values of E, exactly as coarse() computes them (the densest fine voxel).
@@ -257,9 +291,12 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
           v = volume_->airValue();
         } else {
           v = volume_->airValue();
+          const float* block = &fine(I * scale_, J * scale_, K * scale_);
           for (int k = 0; k < scale_; ++k)
-            for (int j = 0; j < scale_; ++j)
-              for (int i = 0; i < scale_; ++i) v = std::max(v, fine(I * scale_ + i, J * scale_ + j, K * scale_ + k));
+            for (int j = 0; j < scale_; ++j) {
+              const float* row = block + (std::size_t(k) * fDim.y + std::size_t(j)) * fDim.x;
+              for (int i = 0; i < scale_; ++i) v = std::max(v, row[i]);
+            }
         }
         coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)] = v;
       }

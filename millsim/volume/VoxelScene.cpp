@@ -65,18 +65,15 @@ const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
   Volume& v = *volumes_.at(volume);
   for (Shell& s : shells_) {
     if (s.volume != volume || s.scale != scale) continue;
-    // Follow milling: one mill() since the last look is merged from its
-    // changed voxels; more than one forces a full rebuild, slow but never wrong.
-    if (v.millEpoch != s.epoch) {
-      if (v.millEpoch == s.epoch + 1) s.shell->update(*v.voxels, v.changed);
-      else s.shell->rebuildAll(*v.voxels);
-      s.epoch = v.millEpoch;
+    if (!s.pending.empty()) {
+      s.shell->update(*v.voxels, s.pending);
+      s.pending.clear();
     }
     return *s.shell;
   }
   // First request (compile time): a node keeps its shells between runs, and a
   // kept one may have missed milling while no renderer used it.
-  Shell s{volume, scale, nullptr, nullptr, v.millEpoch};
+  Shell s{volume, scale, nullptr, nullptr, DirtyBlocks(v.voxels->dims())};
   if (v.node) {
     const bool existed = v.node->hasPointShell(scale);
     s.shell = &v.node->pointShell(scale);
@@ -91,24 +88,19 @@ const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
 
 double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
   double removed = 0.0;
-  for (auto& v : volumes_) {
-    if (!v->millable.load(std::memory_order_relaxed)) continue;
-    const glm::dvec3 local = glm::dvec3(v->placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
+  for (std::size_t i = 0; i < volumes_.size(); ++i) {
+    Volume& v = *volumes_[i];
+    if (!v.millable.load(std::memory_order_relaxed)) continue;
+    const glm::dvec3 local = glm::dvec3(v.placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
     // Clearing first keeps `changed` to this call's blocks (O(blocks), no allocation).
-    v->changed.clear();
-    const StampResult res = v->miller.stamp(local, radius / v->placement.worldPerLocal, v->changed);
+    v.changed.clear();
+    const StampResult res = v.miller.stamp(local, radius / v.placement.worldPerLocal, v.changed);
     removed += res.removedVolume;
-    if (!v->changed.empty()) ++v->millEpoch;
-  }
-  // Every shell in use follows at once, not when its renderer next looks: a
-  // renderer waiting in a RendererPool takes over with a current shell, and
-  // never rebuilds one whole on the haptic thread.
-  for (Shell& s : shells_) {
-    Volume& v = *volumes_[s.volume];
-    if (v.millEpoch == s.epoch + 1) {
-      s.shell->update(*v.voxels, v.changed);
-      s.epoch = v.millEpoch;
-    }
+    if (v.changed.empty()) continue;
+    ++v.millEpoch;
+    // The shells only collect the change here; each merges it when next asked for.
+    for (Shell& s : shells_)
+      if (s.volume == i) s.pending.add(v.changed);
   }
   return removed;
 }

@@ -37,8 +37,9 @@ public:
     Miller miller;
     // The 8³ blocks changed by the latest mill() call that changed this
     // volume, and a counter bumped by every such call. Consumers on the haptic
-    // thread (the point shells, the graphics publisher) remember the epoch
-    // they last saw and update from `changed` when it moved on.
+    // thread (the graphics publisher) remember the epoch they last saw and
+    // update from `changed` when it moved on; the point shells collect every
+    // call's blocks instead (Shell::pending).
     DirtyBlocks changed;
     std::uint64_t millEpoch = 0;
   };
@@ -63,6 +64,7 @@ public:
   double field(const glm::dvec3& world) const override;
   glm::dvec3 gradient(const glm::dvec3& world) const override;
   double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
+  // Merges the milling the shell has not seen yet (see Shell), then returns it.
   const PointShell& pointShell(std::size_t volume, int scale) override;
 
   // Removes material with a burr sphere at a world point (every millable
@@ -71,13 +73,17 @@ public:
   double mill(const glm::dvec3& centreWorld, double radius);
 
 private:
-  // A point shell in use by this scene, and the mill epoch it has caught up with.
+  // A point shell in use by this scene, and the milling it has not merged yet.
+  // mill() only adds the changed blocks to `pending` (O(changed blocks)); the
+  // shell merges them when pointShell() asks for it. So a shell nobody looks
+  // at (Barbic's coarse fallback, a renderer waiting in a RendererPool) costs
+  // a milling frame nothing, and catches up, exactly, when it is next used.
   struct Shell {
     std::size_t volume;
     int scale;
     PointShell* shell;
     std::unique_ptr<PointShell> owned;  // for volumes without a node
-    std::uint64_t epoch;
+    DirtyBlocks pending;
   };
 
   std::vector<std::unique_ptr<Volume>> volumes_;
