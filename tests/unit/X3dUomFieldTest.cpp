@@ -129,7 +129,8 @@ TEST(X3dUom, ImplementedStandardNodesHaveTheStandardFields) {
 
 // The comparison can fail: a wrong default, a wrong type and a missing field are each reported.
 TEST(X3dUom, AWrongTableIsReported) {
-  const NodeType* t = builtinRegistry().find("Transform");
+  const NodeRegistry registry = builtinRegistry();  // kept: find() points into it
+  const NodeType* t = registry.find("Transform");
   ASSERT_NE(t, nullptr);
   EXPECT_TRUE(mismatches(*t, {{"Transform", "scale", "SFVec3f", "inputOutput", "1 1 1"}}).empty());
   EXPECT_EQ(mismatches(*t, {{"Transform", "scale", "SFVec3f", "inputOutput", "2 1 1"}}).size(), 1u);
