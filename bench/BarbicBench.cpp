@@ -5,7 +5,6 @@
 // the point shell's update after one burr stamp, fast path against the
 // block-rebuild path. Counters: p50/p99 frame time, contacts, shell points.
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "bench/ThreadCpuTime.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/Milling.h"
@@ -22,16 +22,9 @@
 #include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
+using millsim::bench::threadCpuMicros;
 
 namespace {
-
-// Thread CPU time: on a loaded 2-core machine wall-time percentiles measure
-// the scheduler (4 ms ticks), not the frame. Both are reported.
-double cpuMicros() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) * 1e6 + double(ts.tv_nsec) * 1e-3;
-}
 
 // 0: the paper's grid (0.1 mm); 1: 8× the voxels (0.05 mm).
 VoxelVolume& phantom(int which) {
@@ -77,11 +70,11 @@ void BM_Barbic(benchmark::State& state) {
   double contacts = 0;
   int fallbacks = 0;
   for (auto _ : state) {
-    const double c0 = cpuMicros();
+    const double c0 = threadCpuMicros();
     const auto t0 = std::chrono::steady_clock::now();
     const HapticOutput out = algorithm->step(scene, {contactPose(n++, y), 1e-3});
     const auto t1 = std::chrono::steady_clock::now();
-    const double c1 = cpuMicros();
+    const double c1 = threadCpuMicros();
     benchmark::DoNotOptimize(out.force);
     contacts += out.contacts;
     fallbacks += (out.flags & kFlagCoarseFallback) != 0;
@@ -127,9 +120,9 @@ void BM_ShellUpdateAfterStamp(benchmark::State& state) {
     miller.stamp({0.0, y, 0.0}, radius, dirty);
     y -= 0.01e-3;
     // Manual time = the update's own thread CPU time (no pause/resume overhead, no preemption).
-    const double c0 = cpuMicros();
+    const double c0 = threadCpuMicros();
     buckets += state.range(2) ? shell.update(v, dirty) : shell.update(v, dirty.origins());
-    const double c1 = cpuMicros();
+    const double c1 = threadCpuMicros();
     state.SetIterationTime((c1 - c0) * 1e-6);
     cpu.push_back(c1 - c0);
   }

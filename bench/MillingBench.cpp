@@ -9,27 +9,21 @@
 // Counters: thread-CPU p50 / p99 / max per frame (µs), the stamp's own p50 /
 // p99, points, the fraction of stamps that removed material.
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
 
+#include "bench/ThreadCpuTime.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
+using millsim::bench::threadCpuMicros;
 
 namespace {
-
-// Thread CPU time: on a loaded 2-core machine wall time measures the scheduler.
-double cpuMicros() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) * 1e6 + double(ts.tv_nsec) * 1e-3;
-}
 
 constexpr double kBurr = 0.6e-3;  // the lesson's burr radius
 constexpr double kTop = 9.9e-3;   // just above the occlusal surface over the fossa
@@ -60,18 +54,18 @@ void BM_MillingFrame(benchmark::State& state) {
   long n = 0, cutting = 0;
   for (auto _ : state) {
     const glm::dvec3 c = burrAt(n++);
-    const double c0 = cpuMicros();
+    const double c0 = threadCpuMicros();
     double removed;
     if (rebuild) {
       removed = scene.mill(c, kBurr);
       fine.rebuildAll(volume);
     } else {
       removed = scene.mill(c, kBurr);
-      stampCpu.push_back(cpuMicros() - c0);
+      stampCpu.push_back(threadCpuMicros() - c0);
       // The shell as the next step sees it (a lazy scene merges the stamp here).
       benchmark::DoNotOptimize(scene.pointShell(0, scale).size());
     }
-    const double c1 = cpuMicros();
+    const double c1 = threadCpuMicros();
     state.SetIterationTime((c1 - c0) * 1e-6);
     cutting += removed > 0.0;
     if (cpu.size() < cpu.capacity()) cpu.push_back(c1 - c0);
@@ -113,9 +107,9 @@ void BM_DormantCatchUp(benchmark::State& state) {
     scene.addVolume(volume, glm::dmat4(1.0), 700.0);
     scene.pointShell(0, scale);
     for (long n = 0; n < frames; ++n) scene.mill(burrAt(n), kBurr);
-    const double c0 = cpuMicros();
+    const double c0 = threadCpuMicros();
     benchmark::DoNotOptimize(scene.pointShell(0, scale).size());
-    state.SetIterationTime((cpuMicros() - c0) * 1e-6);
+    state.SetIterationTime((threadCpuMicros() - c0) * 1e-6);
   }
 }
 BENCHMARK(BM_DormantCatchUp)

@@ -12,7 +12,6 @@
 // (%d becomes the scale; make the logs with
 //   millsim replay scene-s.x3d --trajectory x3d/trajectories/section-8-2.csv --log ...)
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -22,19 +21,15 @@
 #include <string>
 #include <vector>
 
+#include "bench/ThreadCpuTime.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
+using millsim::bench::threadCpuMicros;
 
 namespace {
-
-double cpuMicros() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) * 1e6 + double(ts.tv_nsec) * 1e-3;
-}
 
 struct LoggedFrame {
   Pose device;
@@ -98,10 +93,10 @@ void BM_Procedure(benchmark::State& state) {
     milling.reserve(frames.size()), contact.reserve(frames.size()), freeFrames.reserve(frames.size());
     mismatches = 0;
     for (const LoggedFrame& f : frames) {
-      const double c0 = cpuMicros();
+      const double c0 = threadCpuMicros();
       const HapticOutput out = algorithm->step(scene, HapticInput{f.device, 1e-3, f.button});
       if (f.button && out.burrCuts) scene.mill(out.burrCentre, tool.tipRadius);
-      const double us = cpuMicros() - c0;
+      const double us = threadCpuMicros() - c0;
       mismatches += out.contacts != f.contacts;  // the log's own frames, or the comparison is off
       (f.button && out.contacts > 0 ? milling : out.contacts > 0 ? contact : freeFrames).push_back(us);
     }
