@@ -101,21 +101,8 @@ RecordedRun RecordedRun::parse(const std::string& text, const std::string& file)
     f.device.orientation = glm::dquat(number(4), number(5), number(6), number(7));
     const double button = number(8);
     f.periodUs = number(9);
-    if (f.t < 0.0 || f.t > Trajectory::kMaxTime)
-      throw TrajectoryError(where() + "time " + formatNumber(f.t) + " s is outside [0, " +
-                            formatNumber(Trajectory::kMaxTime) + "] s");
-    if (!run.frames_.empty() && !(f.t > run.frames_.back().t))
-      throw TrajectoryError(where() + "time " + formatNumber(f.t) + " does not increase (previous row: " +
-                            formatNumber(run.frames_.back().t) + ")");
-    for (int a = 0; a < 3; ++a)
-      if (std::abs(f.device.position[a]) > Trajectory::kMaxPosition)
-        throw TrajectoryError(where() + "column '" + kNeeded[1 + a] + "' = " + formatNumber(f.device.position[a]) +
-                              " m is outside [-" + formatNumber(Trajectory::kMaxPosition) + ", " +
-                              formatNumber(Trajectory::kMaxPosition) + "] m");
-    const double norm = glm::length(f.device.orientation);
-    if (std::abs(norm - 1.0) > 1e-3)
-      throw TrajectoryError(where() + "the quaternion (qw,qx,qy,qz) has length " + formatNumber(norm) +
-                            "; expected a unit quaternion");
+    Trajectory::checkRow(where(), f.t, f.device.position, f.device.orientation,
+                         run.frames_.empty() ? NAN : run.frames_.back().t);
     if (button != 0.0 && button != 1.0)
       throw TrajectoryError(where() + "column 'button' must be 0 or 1, found '" + formatNumber(button) + "'");
     f.button = button == 1.0;

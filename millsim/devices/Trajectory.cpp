@@ -66,6 +66,24 @@ Trajectory Trajectory::load(const std::filesystem::path& file) {
   return parse(readTrajectoryText(file), file.string());
 }
 
+double Trajectory::checkRow(const std::string& where, double t, const glm::dvec3& position, const glm::dquat& q,
+                           double previousTime) {
+  if (t < 0.0 || t > kMaxTime)
+    throw TrajectoryError(where + "time " + formatNumber(t) + " s is outside [0, " + formatNumber(kMaxTime) + "] s");
+  if (!std::isnan(previousTime) && !(t > previousTime))
+    throw TrajectoryError(where + "time " + formatNumber(t) + " does not increase (previous row: " +
+                          formatNumber(previousTime) + ")");
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(position[a]) > kMaxPosition)
+      throw TrajectoryError(where + "column '" + "xyz"[a] + "' = " + formatNumber(position[a]) + " m is outside [-" +
+                            formatNumber(kMaxPosition) + ", " + formatNumber(kMaxPosition) + "] m");
+  const double norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  if (std::abs(norm - 1.0) > 1e-3)
+    throw TrajectoryError(where + "the quaternion (qw,qx,qy,qz) has length " + formatNumber(norm) +
+                          "; expected a unit quaternion");
+  return norm;
+}
+
 Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
   std::vector<TrajectorySample> rows;
   // A run's frame log is a trajectory too: the device poses and the button it recorded.
@@ -126,31 +144,16 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
         throw TrajectoryError(where + "column '" + std::string(expected[std::size_t(c)]) +
                               "' is not finite: '" + std::string(cells[std::size_t(c)]) + "'");
     }
-    if (v[0] < 0.0 || v[0] > Trajectory::kMaxTime)
-      throw TrajectoryError(where + "time " + formatNumber(v[0]) + " s is outside [0, " +
-                            formatNumber(Trajectory::kMaxTime) + "] s");
-    for (int c = 1; c <= 3; ++c)
-      if (std::abs(v[c]) > Trajectory::kMaxPosition)
-        throw TrajectoryError(where + "column '" + std::string(expected[std::size_t(c)]) + "' = " + formatNumber(v[c]) +
-                              " m is outside [-" + formatNumber(Trajectory::kMaxPosition) + ", " +
-                              formatNumber(Trajectory::kMaxPosition) + "] m");
     if (rows.size() >= Trajectory::kMaxRows)
       throw TrajectoryError(where + "more than " + std::to_string(Trajectory::kMaxRows) + " rows");
     TrajectorySample s;
     s.t = v[0];
     s.pose.position = glm::dvec3(v[1], v[2], v[3]);
-    glm::dquat q(v[4], v[5], v[6], v[7]);
-    const double norm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
-    if (std::abs(norm - 1.0) > 1e-3)
-      throw TrajectoryError(where + "the quaternion (qw,qx,qy,qz) has length " + formatNumber(norm) +
-                            "; expected a unit quaternion");
-    s.pose.orientation = q / norm;
+    const glm::dquat q(v[4], v[5], v[6], v[7]);
+    s.pose.orientation = q / checkRow(where, s.t, s.pose.position, q, rows.empty() ? NAN : rows.back().t);
     if (v[8] != 0.0 && v[8] != 1.0)
       throw TrajectoryError(where + "column 'button' must be 0 or 1, found '" + std::string(cells[8]) + "'");
     s.button = v[8] == 1.0;
-    if (!rows.empty() && !(s.t > rows.back().t))
-      throw TrajectoryError(where + "time " + formatNumber(s.t) + " does not increase (previous row: " +
-                            formatNumber(rows.back().t) + ")");
     rows.push_back(s);
   }
   if (!sawHeader) throw TrajectoryError(file + ": empty trajectory; expected the header '" + kHeader + "'");

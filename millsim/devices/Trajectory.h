@@ -39,6 +39,13 @@ public:
   static constexpr double kMaxPosition = 10.0;
   static constexpr std::size_t kMaxRows = 10'000'000;
 
+  // Throws TrajectoryError, prefixed by `where` ("file:line: "), unless a row
+  // holds what a trajectory may: a time in [0, kMaxTime] s after
+  // `previousTime` (NaN for the first row), a position within kMaxPosition m,
+  // a unit quaternion (within 1e-3). Returns the quaternion's length.
+  static double checkRow(const std::string& where, double t, const glm::dvec3& position, const glm::dquat& q,
+                         double previousTime);
+
   static Trajectory load(const std::filesystem::path& file);
   static Trajectory parse(const std::string& text, const std::string& fileLabel);
   explicit Trajectory(std::vector<TrajectorySample> samples);
