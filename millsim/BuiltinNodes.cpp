@@ -17,7 +17,7 @@ namespace millsim {
 
 void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
-  for (const NodeType* t : {&VolumeObject::type(), &MillTool::type(), &LineProxyRenderer::type(),
+  for (const NodeType* t : {&VolumeObject::type(), &Tissue::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
                             &HandDevice::type(), &AresDevice::type(), &MouseDevice::type()})
     r.add(*t);

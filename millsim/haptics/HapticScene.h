@@ -40,6 +40,13 @@ public:
   glm::dvec3 outwardNormal(const glm::dvec3& world) const;
   // Smallest voxel edge in world units: the natural step for searches.
   virtual double voxelSize() const = 0;
+  // How hard the material at a world point is to cut (its Tissue's hardness;
+  // 1 for material of no tissue, and in air). Renderers divide their feed by
+  // it at the burr's leading point (docs/algorithms.md, "Tissue hardness").
+  virtual double hardness(const glm::dvec3& world) const {
+    (void)world;
+    return 1.0;
+  }
 
   // Volume `volume`'s point shell at `scale` (points in its local frame),
   // current with all milling so far. The first call for a (volume, scale)

@@ -10,6 +10,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
 #include "millsim/renderers/BarbicSolve.h"
 #include "millsim/renderers/Obb.h"
@@ -31,7 +32,7 @@ struct BarbicParams {
 class BarbicAlgorithm final : public HapticAlgorithm {
 public:
   BarbicAlgorithm(const BarbicParams& p, const ToolGeometry& tool, double sdfVoxel, HapticScene& scene)
-      : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.tipRadius)) {
+      : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.tipRadius)), reachTip_(tool.tipRadius) {
     // The scene builds the shells on first request: here, on the scene thread, not in step().
     shells_.resize(scene.volumeCount());
     followMilling(scene);
@@ -44,7 +45,7 @@ public:
     tool_ = isFinite(device) ? device : Pose{};
     lastDevice_ = tool_;
     toolVelocity_.setZero();
-    cutting_ = false;
+    cut_.reset(device.position);
   }
 
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
@@ -87,23 +88,14 @@ public:
     out.drawnTool = tool_;
     out.hasProxy = true;
     out.proxy = tool_.position;
-    // Milling: the burr cuts where it is drawn, advanced towards the device at
-    // the feed speed |F| / feedResistance, never past the device. The advance
-    // accumulates while the button is held (measured from the current tool
-    // pose, so a tool that follows the receding surface does not double it):
-    // the coverage stamp is idempotent, and one frame's feed alone never gets
-    // past the thin layer the first stamp removed (docs/algorithms.md).
-    const glm::dvec3 toDevice = device.position - tool_.position;
-    const double gap = glm::length(toDevice);
-    out.burrCentre = tool_.position;
-    if (in.milling && gap > 0.0) {
-      const glm::dvec3 dir = toDevice / gap;
-      const double previous = cutting_ ? std::max(0.0, glm::dot(cutCentre_ - tool_.position, dir)) : 0.0;
-      const double depth = std::min(previous + glm::length(out.force) / p_.feedResistance * dt, gap);
-      out.burrCentre = tool_.position + dir * depth;
-    }
-    cutting_ = in.milling;
-    cutCentre_ = out.burrCentre;
+    // Milling: free of contact the burr cuts where it is drawn; in contact
+    // the cut front starts there and advances towards the device at the feed
+    // speed |F| / (feedResistance · hardness), never past it. Not at the tool
+    // itself: the coupled tool rests a penalty depth inside the surface, and
+    // cutting there lets the surface recede by that depth every frame
+    // whatever the force or tissue (docs/algorithms.md, "Tissue hardness").
+    out.burrCentre = cut_.step(scene, FeedLaw{p_.feedResistance, reachTip_}, tool_.position, device.position,
+                               out.contacts > 0, in.milling, glm::length(out.force), dt);
     out.burrCuts = true;
     lastDevice_ = device;
     toolVelocity_ = toolVelocity;
@@ -199,12 +191,12 @@ private:
   BarbicParams p_;
   ToolSdf sdf_;
   double reach_;
+  double reachTip_;  // the burr's radius: its leading point is this far ahead of its centre
   std::vector<Shells> shells_;
   Wrench6 acc_;
   Pose tool_, lastDevice_;
   Vec6 toolVelocity_ = Vec6::Zero();
-  bool cutting_ = false;        // the burr cut last frame, at cutCentre_
-  glm::dvec3 cutCentre_{0.0};
+  CutFront cut_;  // where the burr cuts
 };
 
 }  // namespace

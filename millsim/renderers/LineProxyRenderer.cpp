@@ -141,7 +141,7 @@ public:
     // device, where it overlaps material its centre vertex cannot feel, and
     // cutting there would clear the surface before the proxy ever met it. In
     // contact the burr advances into the surface at the feed speed
-    // |F| / feedResistance, never deeper than the probe.
+    // |F| / (feedResistance · hardness), never deeper than the probe.
     // The advance accumulates while milling: the coverage stamp is
     // idempotent, so a burr that only ever reached one frame's feed past the
     // tangent position would stop cutting once that thin layer is gone.
@@ -152,7 +152,10 @@ public:
     if (tipContact && in.milling) {
       const glm::dvec3 n = scene.outwardNormal(proxyPoint);
       const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
-      const double feed = glm::length(out.force) / p_.feedResistance * in.dt;
+      // Harder tissue at the burr's leading point gives way more slowly.
+      const double hardness =
+          scene.hardness(drawTip - n * (previous + p_.tool.tipRadius + 0.5 * scene.voxelSize()));
+      const double feed = hardness > 0.0 ? glm::length(out.force) / (p_.feedResistance * hardness) * in.dt : 0.0;
       const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
       out.burrCentre = drawTip - n * depth;
       cutCentre_ = out.burrCentre;

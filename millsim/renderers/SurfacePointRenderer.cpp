@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
 
 namespace millsim {
@@ -17,8 +18,9 @@ namespace {
 
 class SurfacePointAlgorithm final : public HapticAlgorithm {
 public:
-  SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k)
-      : k_(k), perSlice_(perSlice), heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
+  SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k,
+                        double feedResistance)
+      : k_(k), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice), heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
     // Sphere: a Fibonacci lattice spreads any number of points evenly.
     const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
     for (int i = 0; i < sphereVertices; ++i) {
@@ -39,6 +41,7 @@ public:
 
   void reset(const Pose& device) override {
     lastDrawn_ = device;
+    cut_.reset(device.position);
     heldSphere_ = glm::dvec3(0.0);
     std::fill(heldSlice_.begin(), heldSlice_.end(), glm::dvec3(0.0));
   }
@@ -49,6 +52,7 @@ public:
     // The held forces are k · (penetration at entry): the same entry, the new k.
     const double scale = k_ / p->k_;
     lastDrawn_ = p->lastDrawn_;
+    cut_ = p->cut_;
     heldSphere_ = p->heldSphere_ * scale;
     for (std::size_t j = 0; j < heldSlice_.size(); ++j) heldSlice_[j] = p->heldSlice_[j] * scale;
   }
@@ -101,7 +105,19 @@ public:
       }
       out.torque += glm::cross(centre - c, reaction) / double(sliceY_.size());  // eq. 20–21
     }
-    out.burrCentre = c;
+    // Milling (MillSim's removal model; the paper's #2 cuts at the device at
+    // once, which lets the hand push through any tissue unopposed): the cut
+    // front advances towards the device at the feed speed, and the penalty
+    // force meets what is not cut yet.
+    // Past half immersion the force is held (eq. 17) and says nothing about
+    // how hard the hand pushes (a device that jumped in holds zero): the feed
+    // then takes the penalty of the burr's distance past the cut front, k/2
+    // per metre (about half the burr's points collide there).
+    const bool touching = out.contacts > 0 || (out.flags & kFlagHeldForce) != 0;
+    double push = glm::length(out.force);
+    if (touching && scene.inside(c)) push = std::max(push, 0.5 * k_ * glm::length(c - cut_.centre()));
+    cut_.step(scene, feed_, c, c, touching, in.milling, push, in.dt);
+    out.burrCentre = cut_.centre();
     sanitize(out, device);
     lastDrawn_ = out.drawnTool;
     return out;
@@ -132,6 +148,8 @@ private:
   }
 
   double k_;
+  FeedLaw feed_;
+  CutFront cut_;  // where the burr cuts
   int perSlice_;
   std::vector<glm::dvec3> sphere_, ring_;
   std::vector<double> sliceY_;
@@ -151,7 +169,7 @@ const NodeType& SurfacePointRenderer::type() {
 
 std::unique_ptr<HapticAlgorithm> SurfacePointRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
   return std::make_unique<SurfacePointAlgorithm>(tool, sphereVertices.get(), slices.get(), verticesPerSlice.get(),
-                                                 double(springConstant.get()));
+                                                 double(springConstant.get()), double(feedResistance.get()));
 }
 
 // Penalty forces on points of the tool: the stiffness is the shared spring,

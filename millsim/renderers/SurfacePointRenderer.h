@@ -28,6 +28,11 @@ public:
                          "k_spring of eq. 14 (N/m); the felt stiffness is about k times the colliding fraction.",
                          Range::openClosed(0, 1e6)};
 
+  SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
+                         "Milling: the burr cuts where the device is, and the material gives way at force / "
+                         "(feedResistance x hardness) (N·s/m); MillSim's removal model, the paper removes at once.",
+                         Range::openClosed(0, 1e6)};
+
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };
 

@@ -9,8 +9,13 @@
 
 namespace millsim {
 
-Miller::Miller(VoxelVolume& volume, float isoValue)
-    : volume_(volume), acc_(volume.grid().getAccessor()), iso_(isoValue) {}
+Miller::Miller(VoxelVolume& volume, float isoValue, const TissueMap* tissues)
+    : volume_(volume),
+      acc_(volume.grid().getAccessor()),
+      tissues_(tissues),
+      labels_(tissues ? std::make_unique<TissueMap::LabelGrid::ConstAccessor>(tissues->labels().getConstAccessor())
+                      : nullptr),
+      iso_(isoValue) {}
 
 StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlocks& dirty) {
   StampResult result;
@@ -56,6 +61,10 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
         if (!leaf && acc_.getValue(openvdb::Coord(seg, j, k)) <= air) continue;
         float* data = leaf ? leaf->buffer().data() : nullptr;
         const int rowOffset = ((j & 7) << 3) + (k & 7);
+        // The labels share the densities' leaf layout; a pruned (uniform) leaf is a tile.
+        const TissueMap::LabelGrid::TreeType::LeafNodeType* labelLeaf =
+            tissues_ ? labels_->probeConstLeaf(openvdb::Coord(seg, j, k)) : nullptr;
+        const int tileLabel = tissues_ && !labelLeaf ? labels_->getValue(openvdb::Coord(seg, j, k)) : 0;
         for (int i = seg; i <= segHi; ++i) {
           // Air first: once the burr has sunk in, most of its sphere is air
           // already, and a read is cheaper than the distance below.
@@ -69,6 +78,10 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
           // on the sphere's surface (coverage ½) that is exactly the iso-value.
           const float now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
           if (now >= old) continue;
+          // A tissue of hardness 0 (a tooth's pulp guard, a implant) is never cut.
+          if (tissues_ &&
+              !(tissues_->hardness()[std::size_t(labelLeaf ? labelLeaf->getValue(((i & 7) << 6) + rowOffset) : tileLabel)] > 0.f))
+            continue;
           if (data) data[((i & 7) << 6) + rowOffset] = now;
           else acc_.setValueOnly(xyz, now);
           result.removedVolume += (phi(old) - phi(now)) * voxelVolume;

@@ -12,9 +12,15 @@
 // fully inside become air, a stamp never adds material, and stamping the same
 // place again changes nothing (so holding the burr still does not widen the
 // hole). Removed volume is Σ (φ(old) − φ(new)) × voxel volume.
+//
+// Hardness (docs/algorithms.md, "Tissue hardness") sets how fast a renderer
+// advances the burr; the stamp itself only leaves tissue of hardness 0 alone.
 #include <glm/vec3.hpp>
 
+#include <memory>
+
 #include "millsim/volume/DirtyBlocks.h"
+#include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
@@ -29,7 +35,9 @@ struct StampResult {
 // VolumeReplica for how graphics gets the changes).
 class Miller {
 public:
-  Miller(VoxelVolume& volume, float isoValue);
+  // `tissues` (optional, outliving the Miller) gives each voxel's hardness;
+  // without it every voxel has hardness 1.
+  Miller(VoxelVolume& volume, float isoValue, const TissueMap* tissues = nullptr);
 
   // Stamps a burr sphere given in the volume's local frame (metres). Marks
   // every changed block in `dirty`. Does not allocate.
@@ -40,6 +48,8 @@ public:
 private:
   VoxelVolume& volume_;
   VoxelVolume::Grid::Accessor acc_;
+  const TissueMap* tissues_;
+  std::unique_ptr<TissueMap::LabelGrid::ConstAccessor> labels_;  // only with tissues
   float iso_;
   double totalRemoved_ = 0.0;
 };

@@ -16,6 +16,7 @@ namespace {
 // All geometry is in millimetres, in the tooth frame: the volume's centre is
 // the origin, +Y runs from the root apices to the occlusal surface.
 constexpr double kCej = 2.0;  // cemento-enamel junction height
+constexpr double kCementumThickness = 0.15;  // cementum on the root (about 0.05–0.2 mm)
 
 double smin(double a, double b, double k) {  // smooth union of two distances
   const double h = std::clamp(0.5 + 0.5 * (b - a) / k, 0.0, 1.0);
@@ -93,6 +94,47 @@ float densityAt(const glm::dvec3& pmm, bool socket, double hmm) {
   return static_cast<float>(v);
 }
 
+// The tissue a voxel of size h (mm) at p is mostly made of, by the same
+// layering as densityAt: every voxel densityAt gives material to (its centre
+// within half a voxel of a surface) gets a label, so the label volume covers
+// the density volume's material voxel for voxel.
+int labelAt(const glm::dvec3& pmm, bool socket, double hmm) {
+  const double reach = 0.5 * hmm;
+  const double tooth = toothDistance(pmm);
+  if (tooth < reach) {
+    if (pulpDistance(pmm) < 0.0) return kToothPulp;
+    if (tooth + enamelThickness(pmm.y) < 0.0) {
+      // Below the junction the root's outer layer is cementum.
+      return pmm.y < kCej && tooth > -kCementumThickness ? kToothCementum : kToothDentin;
+    }
+    return pmm.y < kCej - 0.5 ? kToothCementum : kToothEnamel;
+  }
+  if (socket && box(pmm, {0, -6.0, 0}, {9.5, 6.5, 7.0}) < reach) return tooth - 0.2 < 0.0 ? kToothLigament : kToothBone;
+  return 0;
+}
+
+// Fills a volume by a pure function of each voxel's position, skipping the
+// air far from the tooth: any split over threads gives the same bytes.
+template <class F>
+std::vector<float> fillPhantom(const ToothPhantomOptions& o, float outside, F&& value) {
+  const glm::ivec3 n = o.dims;
+  const double hmm = o.voxelSize * 1000.0;
+  const glm::dvec3 half = (glm::dvec3(n) - 1.0) * 0.5;
+  std::vector<float> values(std::size_t(n.x) * n.y * n.z, outside);
+  tbb::parallel_for(0, n.z, [&](int k) {
+    for (int j = 0; j < n.y; ++j) {
+      const double y = (j - half.y) * hmm;
+      for (int i = 0; i < n.x; ++i) {
+        const glm::dvec3 p((i - half.x) * hmm, y, (k - half.z) * hmm);
+        // Far outside the tooth (and its socket) there is only air: skip the geometry.
+        if (!o.socket && (std::abs(p.x) > 7.5 || std::abs(p.z) > 6.5 || p.y > 11.0 || p.y < -11.5)) continue;
+        values[(std::size_t(k) * n.y + j) * n.x + i] = value(p, hmm);
+      }
+    }
+  });
+  return values;
+}
+
 }  // namespace
 
 float toothPhantomDensity(const glm::dvec3& p, bool socket) { return densityAt(p * 1000.0, socket, 1e-9); }
@@ -151,24 +193,34 @@ ToothPhantomOptions parsePhantomUrl(const std::string& url) {
 
 VoxelVolume makeToothPhantom(const ToothPhantomOptions& o) {
   checkVolumeShape("phantom:tooth", o.dims, glm::dvec3(o.voxelSize));
-  const glm::ivec3 n = o.dims;
-  const double hmm = o.voxelSize * 1000.0;
-  const glm::dvec3 half = (glm::dvec3(n) - 1.0) * 0.5;
-  std::vector<float> values(std::size_t(n.x) * n.y * n.z, ToothDensities::air);
-  // Every voxel is a pure function of its position: any split over threads
-  // gives the same bytes.
-  tbb::parallel_for(0, n.z, [&](int k) {
-    for (int j = 0; j < n.y; ++j) {
-      const double y = (j - half.y) * hmm;
-      for (int i = 0; i < n.x; ++i) {
-        const glm::dvec3 p((i - half.x) * hmm, y, (k - half.z) * hmm);
-        // Far outside the tooth (and its socket) there is only air: skip the geometry.
-        if (!o.socket && (std::abs(p.x) > 7.5 || std::abs(p.z) > 6.5 || p.y > 11.0 || p.y < -11.5)) continue;
-        values[(std::size_t(k) * n.y + j) * n.x + i] = densityAt(p, o.socket, hmm);
-      }
-    }
-  });
-  return VoxelVolume::fromDense(values.data(), n, glm::dvec3(o.voxelSize), ToothDensities::air);
+  const std::vector<float> values = fillPhantom(
+      o, ToothDensities::air, [&](const glm::dvec3& p, double hmm) { return densityAt(p, o.socket, hmm); });
+  return VoxelVolume::fromDense(values.data(), o.dims, glm::dvec3(o.voxelSize), ToothDensities::air);
+}
+
+VoxelVolume makeToothPhantomLabels(const ToothPhantomOptions& o) {
+  checkVolumeShape("phantom:tooth-labels", o.dims, glm::dvec3(o.voxelSize));
+  const std::vector<float> values =
+      fillPhantom(o, 0.f, [&](const glm::dvec3& p, double hmm) { return float(labelAt(p, o.socket, hmm)); });
+  return VoxelVolume::fromDense(values.data(), o.dims, glm::dvec3(o.voxelSize), 0.f);
+}
+
+namespace {
+const std::string kLabelsPrefix = "phantom:tooth-labels";
+}
+
+bool isPhantomLabelsUrl(const std::string& url) { return url.rfind(kLabelsPrefix, 0) == 0; }
+
+VoxelVolume loadPhantomLabels(const std::string& url) {
+  if (!isPhantomLabelsUrl(url)) throw VolumeError(url + ": not a phantom label url (expected " + kLabelsPrefix + ")");
+  try {
+    return makeToothPhantomLabels(parsePhantomUrl("phantom:tooth" + url.substr(kLabelsPrefix.size())));
+  } catch (const VolumeError& e) {
+    // parsePhantomUrl names the density url; name the one the author wrote.
+    std::string m = e.what();
+    if (m.rfind("phantom:tooth", 0) == 0) m = url + m.substr(m.find(':', 8));
+    throw VolumeError(m);
+  }
 }
 
 }  // namespace millsim

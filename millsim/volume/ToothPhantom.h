@@ -27,12 +27,29 @@ struct ToothDensities {
   static constexpr float enamel = 2800.f;
 };
 
+// Labels of the phantom's tissues (phantom:tooth-labels): 0 is air.
+enum ToothLabel : int {
+  kToothEnamel = 1,
+  kToothDentin = 2,
+  kToothPulp = 3,
+  kToothCementum = 4,
+  kToothBone = 5,
+  kToothLigament = 6,
+};
+
 // Parses "phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1]". Throws VolumeError.
 // (In an X3D attribute each '&' is written "&amp;"; libxml2 turns it back.)
 ToothPhantomOptions parsePhantomUrl(const std::string& url);
 // Builds the phantom; the size is scaled so the tooth fills the same fraction
 // of the volume whatever the voxel count (voxelSize then follows from dims).
 VoxelVolume makeToothPhantom(const ToothPhantomOptions& options);
+// The phantom's tissue labels (ToothLabel), voxel for voxel with
+// makeToothPhantom(options): every voxel with material there has a label.
+VoxelVolume makeToothPhantomLabels(const ToothPhantomOptions& options);
+// "phantom:tooth-labels[?the phantom's options]": the labels of the phantom
+// with those options. Whether a url names them, and reading it (VolumeError).
+bool isPhantomLabelsUrl(const std::string& url);
+VoxelVolume loadPhantomLabels(const std::string& url);
 // Density of the phantom at a point (metres, tooth frame centred like the volume).
 float toothPhantomDensity(const glm::dvec3& p, bool socket);
 

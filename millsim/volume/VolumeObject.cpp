@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "millsim/volume/PointShell.h"
+#include "millsim/volume/Tissue.h"
+#include "millsim/volume/TissueMap.h"
+#include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -63,6 +66,7 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
                                    (std::isfinite(densest) ? " (the densest is " + formatNumber(densest) + ")"
                                                            : std::string(" (every voxel is air)")) +
                                    "; check isoValue, the data's units or the voxel size");
+      classifyTissues(base, sink);
       return;
     } catch (const VolumeError& e) {
       failed.emplace_back(e.what());
@@ -74,6 +78,44 @@ void VolumeObject::initialize(DiagnosticSink& sink) {
     }
   }
   sink.error(location(), "VolumeObject could not load any of its urls:" + failures);
+}
+
+void VolumeObject::classifyTissues(const std::filesystem::path& base, DiagnosticSink& sink) {
+  std::vector<const Tissue*> list;
+  for (const auto& t : tissues.get()) list.push_back(t.get());
+  if (list.empty()) {
+    if (!labelUrl.get().empty()) sink.warning(location(), "VolumeObject has a labelUrl but no tissues; the labels are not used");
+    return;
+  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (list[i]->name.get() == list[j]->name.get() && !list[i]->name.get().empty())
+        sink.error(list[i]->location(), "Tissue name '" + list[i]->name.get() + "' is used twice in one VolumeObject");
+  std::unique_ptr<VoxelVolume> labels;
+  std::string failures;
+  for (const std::string& u : labelUrl.get()) {
+    try {
+      labels = std::make_unique<VoxelVolume>(isPhantomLabelsUrl(u) ? loadPhantomLabels(u) : loadVolume(u, base, 0.f).volume);
+      break;
+    } catch (const VolumeError& e) {
+      failures += std::string("\n  ") + e.what();
+    }
+  }
+  if (!labelUrl.get().empty() && !labels) {
+    sink.error(location(), "VolumeObject could not load any of its labelUrl volumes:" + failures);
+    return;
+  }
+  try {
+    tissueMap_ = TissueMap::build(*volume_, list, labels.get());
+  } catch (const VolumeError& e) {
+    sink.error(location(), std::string("VolumeObject tissues: ") + e.what());
+    return;
+  }
+  // A tissue no voxel is made of is almost always a wrong range or label.
+  const auto& counts = tissueMap_->voxelCounts();
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (counts[i + 1] == 0)
+      sink.warning(list[i]->location(), "Tissue '" + list[i]->name.get() + "' matches no voxel of the volume");
 }
 
 glm::dvec3 VolumeObject::size() const {

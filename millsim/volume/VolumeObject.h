@@ -3,15 +3,18 @@
 // and drawn. Placed like X3D's VolumeData: centred on its local origin, under
 // any Transforms. The voxels live in a VoxelVolume (OpenVDB); the point shell
 // for Algorithm #3 is built only when a renderer asks for it.
+#include <filesystem>
 #include <map>
 #include <memory>
 
 #include "millsim/core/NodeKinds.h"
+#include "millsim/volume/Tissue.h"
 
 namespace millsim {
 
 class VoxelVolume;
 class PointShell;
+class TissueMap;
 
 class VolumeObject : public ChildNode {
 public:
@@ -30,6 +33,13 @@ public:
                    "Density of air; values at or below it are stored as the sparse background.", Range::closed(-1e9, 1e9)};
   SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
                     "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::closed(0, 1)};
+  MFNodeOf<Tissue> tissues{this, "tissues", Access::InitializeOnly,
+                           "The volume's materials (Tissue nodes): the first that matches a voxel is its tissue; "
+                           "material no tissue matches is cut with hardness 1."};
+  MFString labelUrl{this, "labelUrl", Access::InitializeOnly, {},
+                    "A label volume, voxel for voxel with url, for tissues chosen by label: a volume file as for "
+                    "url, or phantom:tooth-labels[?the phantom's options] (1 enamel, 2 dentin, 3 pulp, 4 cementum, "
+                    "5 bone, 6 ligament)."};
   SFBool millable{this, "millable", Access::InputOutput, true, "Whether the burr removes material; live: a change applies from the next frame."};
   SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed so far (m³)."};
   SFString loadedUrl{this, "loadedUrl", Access::OutputOnly, "", "The url that was loaded."};
@@ -46,12 +56,16 @@ public:
   double voxelEdge() const;
   // The point shell at an integer scale, built on first request.
   PointShell& pointShell(int scale);
+  // The voxels' tissues; null when the volume has no Tissue nodes.
+  const TissueMap* tissueMap() const { return tissueMap_.get(); }
   bool hasPointShell(int scale) const { return shells_.count(scale) != 0; }
 
 private:
   std::unique_ptr<VoxelVolume> volume_;
   std::string format_;
   std::map<int, std::unique_ptr<PointShell>> shells_;
+  std::unique_ptr<TissueMap> tissueMap_;
+  void classifyTissues(const std::filesystem::path& base, DiagnosticSink& sink);
 };
 
 }  // namespace millsim

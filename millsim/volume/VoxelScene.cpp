@@ -4,10 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/matrix.hpp>
 
 #include "millsim/volume/PlacedVolumes.h"
 #include "millsim/volume/PointShell.h"
+#include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VolumeObject.h"
 
 namespace millsim {
@@ -20,7 +22,9 @@ VoxelScene::VoxelScene(const Scene& scene) {
     addVolume(*p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.node);
 }
 
-void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, VolumeObject* node) {
+void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, VolumeObject* node,
+                           const TissueMap* tissues) {
+  if (node && !tissues) tissues = node->tissueMap();
   // index = (local / voxelSize) + halfExtent, local = worldToLocal · world.
   const glm::dmat4 worldToLocal = glm::inverse(m);
   const glm::dvec3 inv = 1.0 / vox.voxelSize();
@@ -30,7 +34,8 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
   const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(m))));
   const bool millable = node ? node->millable.get() : true;
   volumes_.push_back(std::unique_ptr<Volume>(new Volume{node, millable, &vox, Placement{m, worldToLocal, iso, scale},
-                                                        lin, offset, VolumeSampler(vox), Miller(vox, float(iso)),
+                                                        lin, offset, VolumeSampler(vox),
+                                                        Miller(vox, float(iso), tissues), tissues,
                                                         DirtyBlocks(vox.dims())}));
   const glm::dvec3 h = vox.voxelSize() * scale;
   const double smallest = std::min({h.x, h.y, h.z});
@@ -84,6 +89,18 @@ const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
   }
   shells_.push_back(std::move(s));
   return *shells_.back().shell;
+}
+
+double VoxelScene::hardness(const glm::dvec3& world) const {
+  for (const auto& v : volumes_) {
+    if (!v->tissues) continue;
+    const glm::dvec3 idx = glm::round(v->worldToIndexLinear * world + v->worldToIndexOffset);
+    const glm::ivec3 dims = v->voxels->dims();
+    if (!(idx.x >= 0 && idx.y >= 0 && idx.z >= 0 && idx.x < dims.x && idx.y < dims.y && idx.z < dims.z)) continue;
+    const int label = v->tissues->labelAt(int(idx.x), int(idx.y), int(idx.z));
+    if (label != 0) return double(v->tissues->hardness()[std::size_t(label)]);
+  }
+  return 1.0;
 }
 
 double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {

@@ -21,6 +21,7 @@ namespace millsim {
 class Scene;
 class VolumeObject;
 class PointShell;
+class TissueMap;
 
 class VoxelScene final : public HapticScene {
 public:
@@ -35,6 +36,7 @@ public:
     glm::dvec3 worldToIndexOffset;
     VolumeSampler sampler;
     Miller miller;
+    const TissueMap* tissues;  // null: one material of hardness 1
     // The 8³ blocks changed by the latest mill() call that changed this
     // volume, and a counter bumped by every such call. Consumers on the haptic
     // thread (the graphics publisher) remember the epoch they last saw and
@@ -52,8 +54,10 @@ public:
   VoxelScene& operator=(const VoxelScene&) = delete;
 
   // Adds a volume placed by localToWorld; `node` (optional) supplies the
-  // millable flag and caches the point shells between runs.
-  void addVolume(VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso, VolumeObject* node = nullptr);
+  // millable flag, the tissues and caches the point shells between runs.
+  // `tissues` (optional, outliving the scene) stands in for a node's.
+  void addVolume(VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso, VolumeObject* node = nullptr,
+                 const TissueMap* tissues = nullptr);
 
   Volume& volume(std::size_t i) { return *volumes_[i]; }
   const Volume& volume(std::size_t i) const { return *volumes_[i]; }
@@ -66,6 +70,10 @@ public:
   double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
   // Merges the milling the shell has not seen yet (see Shell), then returns it.
   const PointShell& pointShell(std::size_t volume, int scale) override;
+
+  // The hardness of the voxel nearest a world point in the first volume that
+  // has a tissue there; 1 elsewhere.
+  double hardness(const glm::dvec3& world) const override;
 
   // Removes material with a burr sphere at a world point (every millable
   // volume). Returns the volume removed (m³, in each volume's local units).

@@ -1,0 +1,30 @@
+#include "millsim/haptics/CutFront.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/haptics/HapticScene.h"
+
+namespace millsim {
+
+const glm::dvec3& CutFront::step(const HapticScene& scene, const FeedLaw& law, const glm::dvec3& burr,
+                                 const glm::dvec3& target, bool touching, bool milling, double force, double dt) {
+  if (!touching) {
+    centre_ = burr;
+    return centre_;
+  }
+  if (!milling) return centre_;
+  const glm::dvec3 toTarget = target - centre_;
+  const double gap = glm::length(toTarget);
+  if (!(gap > 0.0)) return centre_;
+  const glm::dvec3 dir = toTarget / gap;
+  // The tissue just ahead of the burr's leading point is what gives way.
+  const double hardness = scene.hardness(centre_ + dir * (law.tipRadius + 0.5 * scene.voxelSize()));
+  if (!(hardness > 0.0)) return centre_;
+  const double feed = force / (law.feedResistance * hardness) * dt;
+  centre_ += dir * std::min(feed, gap);
+  return centre_;
+}
+
+}  // namespace millsim

@@ -1,0 +1,37 @@
+#pragma once
+// Tissue: one material of a VolumeObject (its `tissues` field) — enamel,
+// dentin, pulp, bone — chosen by density or by a label volume, with the
+// hardness that sets how fast the burr cuts it and the colour its cut
+// surface is drawn in. docs/algorithms.md, "Tissue hardness".
+#include "millsim/core/Node.h"
+
+namespace millsim {
+
+class Tissue : public Node {
+public:
+  static constexpr std::string_view kindName = "Tissue";
+  static const NodeType& type();
+  const NodeType& nodeType() const override { return type(); }
+
+  SFString name{this, "name", Access::InitializeOnly, "", "The tissue's name, as reports and regions refer to it."};
+  SFVec2f densityRange{this, "densityRange", Access::InitializeOnly, glm::vec2(0.f),
+                       "[min, max) of the volume's original density that is this tissue; 0 0: chosen by label "
+                       "instead.",
+                       Range::closed(-1e9, 1e9)};
+  SFInt32 label{this, "label", Access::InitializeOnly, -1,
+                "Value of the VolumeObject's labelUrl volume that is this tissue; -1: chosen by densityRange "
+                "instead.",
+                Range::closed(-1, 1 << 20)};
+  SFFloat hardness{this, "hardness", Access::InitializeOnly, 1.f,
+                   "How hard the tissue is to cut, relative to 1 for the default material: the cutting front "
+                   "recedes at force / (feedResistance x hardness); 0 is never cut.",
+                   Range::closed(0, 1000)};
+  SFColor color{this, "color", Access::InitializeOnly, Color{glm::vec3(0.85f, 0.8f, 0.7f)},
+                "Colour of the tissue's surface in the graphics.", Range::closed(0, 1)};
+
+  // True when the tissue is chosen by densityRange (an empty range means by label).
+  bool byDensity() const { return densityRange.get().x < densityRange.get().y; }
+  void initialize(DiagnosticSink& sink) override;
+};
+
+}  // namespace millsim

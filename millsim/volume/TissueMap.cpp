@@ -1,0 +1,65 @@
+#include "millsim/volume/TissueMap.h"
+
+#include <cmath>
+
+#include "millsim/volume/Tissue.h"
+
+namespace millsim {
+
+std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std::vector<const Tissue*>& tissues,
+                                            const VoxelVolume* labelVolume) {
+  auto map = std::make_unique<TissueMap>();
+  map->entries_.push_back(Entry{"(unclassified material)", 1.f, glm::vec3(0.85f, 0.8f, 0.7f)});
+  bool needLabels = false;
+  for (const Tissue* t : tissues) {
+    map->entries_.push_back(Entry{t->name.get(), t->hardness.get(), t->color.get().rgb});
+    needLabels |= !t->byDensity();
+  }
+  if (needLabels && !labelVolume)
+    throw VolumeError("a Tissue is chosen by label, but the VolumeObject has no labelUrl volume");
+  if (labelVolume && labelVolume->dims() != volume.dims()) {
+    const auto text = [](glm::ivec3 d) {
+      return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+    };
+    throw VolumeError("the label volume is " + text(labelVolume->dims()) + " voxels, the density volume " +
+                      text(volume.dims()) + "; they must match voxel for voxel");
+  }
+  for (const Entry& e : map->entries_) map->hardness_.push_back(e.hardness);
+  map->counts_.assign(map->entries_.size(), 0);
+
+  // Same topology as the densities: every material voxel gets a label, air
+  // stays background. Walked serially (a few ms for a tooth), so the result
+  // and the counts do not depend on threads.
+  map->labels_ = LabelGrid::create(0);
+  map->labels_->setTree(std::make_shared<LabelGrid::TreeType>(volume.grid().tree(), 0, openvdb::TopologyCopy()));
+  const VoxelVolume::Grid::TreeType& density = volume.grid().tree();
+  auto labelAcc = labelVolume ? std::make_unique<VoxelVolume::Grid::ConstAccessor>(labelVolume->grid().getConstAccessor())
+                              : nullptr;
+  for (auto leaf = map->labels_->tree().beginLeaf(); leaf; ++leaf) {
+    const auto* densityLeaf = density.probeConstLeaf(leaf->origin());
+    for (auto v = leaf->beginValueOn(); v; ++v) {
+      const float d = densityLeaf ? densityLeaf->getValue(v.pos()) : density.getValue(v.getCoord());
+      const float l = labelAcc ? labelAcc->getValue(v.getCoord()) : -1.f;
+      int entry = 0;
+      for (std::size_t t = 0; t < tissues.size() && entry == 0; ++t) {
+        const Tissue& ts = *tissues[t];
+        const glm::vec2 r = ts.densityRange.get();
+        const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : std::lround(l) == ts.label.get();
+        if (match) entry = int(t) + 1;
+      }
+      v.setValue(entry);
+      ++map->counts_[std::size_t(entry)];
+    }
+  }
+  // Whole leaves of one tissue (the inside of the dentin) become tiles.
+  map->labels_->tree().prune();
+  return map;
+}
+
+int TissueMap::find(const std::string& name) const {
+  for (std::size_t i = 1; i < entries_.size(); ++i)
+    if (entries_[i].name == name) return int(i);
+  return 0;
+}
+
+}  // namespace millsim

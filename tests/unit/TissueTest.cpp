@@ -1,0 +1,140 @@
+// Tissues: which material each voxel is (TissueMap), the phantom's labels,
+// and hardness — how fast each renderer's burr cuts a tissue under the same
+// hand (docs/algorithms.md, "Tissue hardness").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "measure/Renderers.h"
+#include "millsim/devices/HandDevice.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/volume/Tissue.h"
+#include "millsim/volume/TissueMap.h"
+#include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VoxelScene.h"
+#include "AnalyticScenes.h"
+
+using namespace millsim;
+using namespace millsim::test;
+
+namespace {
+
+std::shared_ptr<Tissue> tissue(const std::string& name, glm::vec2 range, float hardness) {
+  auto t = std::make_shared<Tissue>();
+  t->name.set(name);
+  t->densityRange.set(range);
+  t->hardness.set(hardness);
+  return t;
+}
+
+// Material removed in `seconds` by a hand that holds the spinning burr on a
+// slab whose material is one tissue of the given hardness, aiming 2 mm below
+// (about 1 N of grip): short enough that neither reaches the aim.
+double removedPressingInto(const std::string& renderer, float hardness, double seconds) {
+  VoxelVolume volume = slab();
+  const auto t = tissue("test", {1.f, 2000.f}, hardness);
+  const auto map = TissueMap::build(volume, {t.get()}, nullptr);
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), kIso, nullptr, map.get());
+  const glm::dquat up(1, 0, 0, 0);
+  const double aim = kTool.tipRadius - 2e-3;
+  const Trajectory hand({{0.0, Pose{{0, kTool.tipRadius, 0}, up}, true},
+                         {0.001, Pose{{0, aim, 0}, up}, true},
+                         {seconds + 1.0, Pose{{0, aim, 0}, up}, true}});
+  LoopSettings s;
+  s.timing = false;
+  s.logCapacity = 4;
+  s.tipRadius = kTool.tipRadius;
+  const auto node = measure::makeRenderer({renderer, {}});
+  HapticLoop loop(scene, node->compile(kTool, scene), makeHandDriver(hand, HandModel{}, false), s);
+  for (long n = 0; n < long(seconds * 1000); ++n) {
+    loop.stepSimulated();
+    loop.records().drain([](const FrameRecord&) {});
+  }
+  return loop.stats().removedVolume;
+}
+
+}  // namespace
+
+TEST(TissueMap, ClassifiesByOriginalDensityFirstMatchWins) {
+  // A slab whose surface falls between voxel centres: one row of 200s.
+  VoxelVolume volume = analytic(64, [](const glm::dvec3& p) { return p.y - 0.02e-3; });
+  const auto soft = tissue("soft", {1.f, 600.f}, 0.5f), hard = tissue("hard", {400.f, 2000.f}, 3.f);
+  const auto map = TissueMap::build(volume, {soft.get(), hard.get()}, nullptr);
+  ASSERT_EQ(map->entries().size(), 3u);
+  EXPECT_EQ(map->find("hard"), 2);
+  EXPECT_EQ(map->find("none"), 0);
+  // Deep in the slab (density 1000): hard; the surface ramp at 500 matches soft first.
+  EXPECT_EQ(map->labelAt(32, 10, 32), 2);
+  int rampLabel = -1;
+  for (int j = 0; j < 64; ++j)
+    if (volume.valueAt(32, j, 32) > 1.f && volume.valueAt(32, j, 32) < 600.f) rampLabel = map->labelAt(32, j, 32);
+  EXPECT_EQ(rampLabel, 1);
+  EXPECT_EQ(map->labelAt(32, 60, 32), 0);  // air
+  EXPECT_GT(map->voxelCounts()[2], 64u * 64u * 20u);
+}
+
+TEST(TissueMap, ChoosesByLabelAndRefusesAMismatchedLabelVolume) {
+  ToothPhantomOptions o;
+  o.dims = {64, 64, 44};
+  o.voxelSize = 0.4e-3;
+  const VoxelVolume density = makeToothPhantom(o);
+  const VoxelVolume labels = makeToothPhantomLabels(o);
+  auto enamel = std::make_shared<Tissue>(), pulp = std::make_shared<Tissue>();
+  enamel->name.set("enamel");
+  enamel->label.set(kToothEnamel);
+  pulp->name.set("pulp");
+  pulp->label.set(kToothPulp);
+  const auto map = TissueMap::build(density, {enamel.get(), pulp.get()}, &labels);
+  EXPECT_GT(map->voxelCounts()[1], 100u);
+  EXPECT_GT(map->voxelCounts()[2], 10u);
+  // Every voxel with material in the density volume has a phantom label.
+  std::uint64_t unlabelled = 0;
+  for (auto v = density.grid().cbeginValueOn(); v; ++v)
+    unlabelled += labels.grid().tree().getValue(v.getCoord()) < 0.5f;
+  EXPECT_EQ(unlabelled, 0u);
+
+  ToothPhantomOptions other = o;
+  other.dims = {32, 32, 22};
+  const VoxelVolume wrong = makeToothPhantomLabels(other);
+  try {
+    TissueMap::build(density, {enamel.get()}, &wrong);
+    FAIL() << "a label volume of another size was accepted";
+  } catch (const VolumeError& e) {
+    EXPECT_NE(std::string(e.what()).find("32x32x22"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(TissueMap::build(density, {enamel.get()}, nullptr), VolumeError);
+}
+
+TEST(TissueMap, PhantomLabelUrlsCarryThePhantomsOptions) {
+  EXPECT_TRUE(isPhantomLabelsUrl("phantom:tooth-labels?size=32,32,22"));
+  EXPECT_FALSE(isPhantomLabelsUrl("phantom:tooth?size=32,32,22"));
+  EXPECT_EQ(loadPhantomLabels("phantom:tooth-labels?size=32,32,22").dims(), glm::ivec3(32, 32, 22));
+  try {
+    loadPhantomLabels("phantom:tooth-labels?size=3,3");
+    FAIL();
+  } catch (const VolumeError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("phantom:tooth-labels?size=3,3: ", 0), 0u) << e.what();
+  }
+}
+
+// The contract: under the same hand, hardness 4 loses markedly less
+// than hardness 1 in the same time, and hardness 0 is never cut — for every
+// renderer in the registry.
+TEST(TissueHardness, HarderTissueLosesLessUnderTheSameHandWithEveryRenderer) {
+  const std::vector<std::string> types = measure::registeredRenderers();
+  ASSERT_GE(types.size(), 3u);
+  for (const std::string& name : types) {
+    const double soft = removedPressingInto(name, 1.f, 0.1);
+    const double hard = removedPressingInto(name, 4.f, 0.1);
+    const double never = removedPressingInto(name, 0.f, 0.1);
+    RecordProperty(name + "_removed_mm3_h1", std::to_string(soft * 1e9));
+    RecordProperty(name + "_removed_mm3_h4", std::to_string(hard * 1e9));
+    EXPECT_GT(soft, 0.01e-9) << name << ": the soft tissue was hardly cut";
+    EXPECT_LT(hard, 0.6 * soft) << name << ": hardness 4 removed " << hard * 1e9 << " mm³, hardness 1 " << soft * 1e9;
+    EXPECT_EQ(never, 0.0) << name << ": hardness 0 was cut";
+  }
+}
