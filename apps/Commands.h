@@ -26,6 +26,7 @@ void addNodesCommand(CLI::App& app, int& result);
 void addPhantomCommand(CLI::App& app, int& result);
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result);
+void addReportCommand(CLI::App& app, int& result);
 void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result);
 
 }  // namespace millsim::app

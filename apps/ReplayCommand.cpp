@@ -10,6 +10,9 @@
 #include <optional>
 
 #include "Commands.h"
+#include "LessonReport.h"
+#include "millsim/lesson/RegionAccounting.h"
+#include "millsim/run/HapticLoop.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
 #include "SaveVolume.h"
@@ -24,7 +27,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("replay", "Replay a trajectory through the scene's haptics renderer (deterministic)");
   struct Args {
     bool strict = false;
-    std::string scene, trajectory, log, soundOut, saveVolume;
+    std::string scene, trajectory, log, soundOut, saveVolume, report;
     ReplayOptions options;
   };
   auto args = std::make_shared<Args>();
@@ -42,6 +45,8 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       ->check(finiteIn(1, 20000, "Hz (the range of desiredHapticsRate)"));
   cmd->add_option("--save-volume", args->saveVolume,
                   "At the end, write the milled volume to this .vdb file (a VolumeObject url loads it back)");
+  cmd->add_option("--report", args->report,
+                  "Write the lesson report (JSON: removed volume, peak force, targets, forbidden regions, score)");
   cmd->add_flag("--timing", args->options.timing,
                 "Log measured compute time per frame (frame_us); without it the log is byte-identical run to run");
   cmd->callback([args, &global, &result] {
@@ -57,6 +62,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       if (!args->saveVolume.empty()) checkSaveVolume(*r.scene, args->saveVolume);
+      if (!args->report.empty()) checkWritable(args->report, "--report");
       // A trajectory, or a run's frame log: that replays the run's own frames (review).
       const std::string text = readTrajectoryText(args->trajectory);
       std::optional<RecordedRun> recorded;
@@ -79,6 +85,17 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
           if (sound->pendingSamples() >= (1u << 16)) sound->flush();
         };
       }
+      // Assessment: what was removed inside each MillingTarget and ForbiddenRegion, frame by frame.
+      RegionAccounting regions(*r.scene);
+      if (!regions.empty()) {
+        options.onLoop = [&regions](HapticLoop& loop) {
+          for (std::size_t i = 0; i < regions.volumeCount(); ++i) loop.publishBlocks(i, regions.channel(i));
+        };
+        options.onFrame = [&regions, sound = options.onFrame](const FrameRecord& fr) {
+          if (sound) sound(fr);
+          regions.update(fr.t);
+        };
+      }
       std::ostream* logOut = args->log.empty() ? nullptr : &log;
       if (recorded)
         std::cout << "replaying a recorded run: " << recorded->frames().size() << " frames from "
@@ -98,7 +115,14 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
                   << 20.0 * std::log10(std::max(sound->rms(), 1e-9)) << " dBFS, written to " << args->soundOut << "\n";
       if (args->options.timing)
         std::cout << "  compute time per frame: mean " << s.meanFrameUs << " µs, p99 " << s.p99FrameUs << " µs\n";
+      regions.publishFields();
       if (!args->saveVolume.empty()) std::cout << saveVolume(*r.scene, args->saveVolume);
+      if (!args->report.empty()) {
+        const LessonReport report{args->scene, s.rendererName, double(s.frames) / s.rate, s.removedVolume,
+                                  s.peakForce, s.peakTorque, regions.results()};
+        writeReport(args->report, report);
+        std::cout << describeReport(report, false) << "  report written to " << args->report << "\n";
+      }
       result = kExitOk;
     } catch (const std::exception& e) {
       std::cerr << "millsim replay: error: " << e.what() << "\n";

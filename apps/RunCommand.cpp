@@ -19,6 +19,7 @@
 #include <tuple>
 
 #include "Commands.h"
+#include "LessonReport.h"
 #include "NumberArgs.h"
 #include "ImageArgs.h"
 #include "SaveVolume.h"
@@ -34,6 +35,7 @@
 #include "millsim/run/RendererPool.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/graphics/SceneView.h"
+#include "millsim/lesson/RegionAccounting.h"
 #include "millsim/std/ClipPlane.h"
 #include "millsim/std/WorldInfo.h"
 #include "millsim/window/WindowModule.h"
@@ -89,7 +91,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     std::string scene, log, renderer, trajectory, screenshot, size;
     double duration = 0.0;
     bool noGraphics = false, noWindow = false;
-    std::string soundOut, saveVolume;
+    std::string soundOut, saveVolume, report;
     bool noSound = false;
   };
   auto args = std::make_shared<Args>();
@@ -111,6 +113,9 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_flag("--no-sound", args->noSound, "Do not play the milling sound live");
   cmd->add_option("--save-volume", args->saveVolume,
                   "At the end, write the milled volume to this .vdb file (a VolumeObject url loads it back)");
+  cmd->add_option("--report", args->report,
+                  "At the end, write the lesson report (JSON: removed volume, peak force, targets, forbidden "
+                  "regions, score)");
   cmd->callback([args, &global, &result] {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
@@ -128,10 +133,12 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     RunControls controls;
     std::unique_ptr<PointerInput> pointer;
     std::unique_ptr<RendererPool> pool;
+    std::unique_ptr<RegionAccounting> regions;
     std::unique_ptr<RunSound> sound;
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       if (!args->saveVolume.empty()) checkSaveVolume(*r.scene, args->saveVolume);
+      if (!args->report.empty()) checkWritable(args->report, "--report");
       if (args->noGraphics && !args->screenshot.empty())
         throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
       if (!args->noGraphics) {
@@ -170,6 +177,10 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         if (const char* stall = std::getenv("MILLSIM_TEST_STALL_WINDOW_MS")) graphicsOptions.stallMs = std::atoi(stall);
       }
       loop = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+      // Assessment counts on this (the scene) thread, from blocks the loop publishes.
+      regions = std::make_unique<RegionAccounting>(*r.scene);
+      if (!regions->empty())
+        for (std::size_t i = 0; i < regions->volumeCount(); ++i) loop->publishBlocks(i, regions->channel(i));
       sound = std::make_unique<RunSound>(RunSoundOptions{args->soundOut, !args->noSound, run.settings.rate}, std::cerr);
     } catch (const std::exception& e) {
       std::cerr << "millsim run: error: " << e.what() << "\n";
@@ -232,7 +243,11 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     while (!loop->finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       if (gInterrupted.load() || controls.closed()) loop->stop();
-      if (writer.drain(*loop) > 0) publishToDevice(*run.device, writer.last(), run.settings.rate);
+      if (writer.drain(*loop) > 0) {
+        publishToDevice(*run.device, writer.last(), run.settings.rate);
+        regions->update(writer.last().t);
+        regions->publishFields();
+      }
       sound->pump();
       for (const WindowCommand& c : controls.take()) {
         if (c.kind == WindowCommand::Kind::SelectRenderer && pool) status = pool->select(std::size_t(c.index), *loop);
@@ -260,6 +275,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     loop->join();
     writer.drain(*loop);
+    regions->update(writer.last().t);
+    regions->publishFields();
     sound->finish(std::cerr);
     RunGraphicsStats graphicsStats;
     std::string graphicsError;
@@ -287,6 +304,18 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
     sound->printSummary(std::cout);
+    if (!args->report.empty()) {
+      try {
+        const LessonReport report{args->scene, run.rendererName, s.elapsed, s.removedVolume, s.peakForce,
+                                  s.peakTorque, regions->results()};
+        writeReport(args->report, report);
+        std::cout << describeReport(report, false) << "  report written to " << args->report << "\n";
+      } catch (const std::exception& e) {
+        std::cerr << "millsim run: error: " << e.what() << "\n";
+        result = kExitFailure;
+        return;
+      }
+    }
     if (!args->saveVolume.empty()) {
       try {
         std::cout << saveVolume(*r.scene, args->saveVolume);

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   addPhantomCommand(app, result);
   addReplayCommand(app, global, result);
   addRenderCommand(app, global, result);
+  addReportCommand(app, result);
   addRunCommand(app, global, result);
 
   try {

@@ -8,6 +8,8 @@
 #include "millsim/devices/MouseDevice.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/haptics/MillTool.h"
+#include "millsim/lesson/ForbiddenRegion.h"
+#include "millsim/lesson/MillingTarget.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
@@ -19,7 +21,8 @@ void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &Tissue::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
-                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type()})
+                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &MillingTarget::type(),
+                            &ForbiddenRegion::type()})
     r.add(*t);
   r.addSceneCheck(&checkDevices);
 }

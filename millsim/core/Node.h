@@ -40,6 +40,9 @@ public:
   // Called once after the node and all its children were read, in child-first
   // order. Cross-field checks go here; report problems to the sink.
   virtual void initialize(DiagnosticSink&) {}
+  // False: graphics do not draw this node's descendants (an assessment
+  // region's shapes mark where it is; they are not something to see).
+  virtual bool showsDescendants() const { return true; }
 
 private:
   friend class Field;

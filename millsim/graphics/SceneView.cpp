@@ -144,7 +144,7 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
       haveBackground = true;
       sv.background = bg->skyColor.get().front().rgb;
     }
-    if (auto* shape = dynamic_cast<Shape*>(&n)) {
+    if (auto* shape = dynamic_cast<Shape*>(&n); shape && at.shown) {
       Node* g = shape->geometry.get().get();
       DrawShape d{DrawShape::Kind::Sphere, m, materialOf(*shape), *at.clipPlanes, {}};
       bool known = true;

@@ -104,12 +104,8 @@ HapticLoop::~HapticLoop() {
 
 void HapticLoop::publishBlocks(std::size_t index, BlockChannel& channel) {
   if (index >= scene_.volumeCount()) throw std::out_of_range("publishBlocks: no volume " + std::to_string(index));
-  if (publishers_.size() < scene_.volumeCount()) {
-    publishers_.resize(scene_.volumeCount());
-    publishedEpoch_.resize(scene_.volumeCount(), 0);
-  }
-  publishers_[index] = std::make_unique<BlockPublisher>(*scene_.volume(index).voxels, channel);
-  publishedEpoch_[index] = scene_.volume(index).millEpoch;
+  publishers_.push_back(Publisher{index, std::make_unique<BlockPublisher>(*scene_.volume(index).voxels, channel),
+                                  scene_.volume(index).millEpoch});
 }
 
 bool HapticLoop::replaceRenderer(std::unique_ptr<HapticAlgorithm>& next) {
@@ -183,14 +179,13 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
     retired_.store(retiredHeld_.release(), std::memory_order_release);
 
   if (button && out.burrCuts) stats_.removedVolume += scene_.mill(out.burrCentre, settings_.tipRadius);
-  for (std::size_t i = 0; i < publishers_.size(); ++i) {
-    if (!publishers_[i]) continue;
-    const auto& v = scene_.volume(i);
+  for (Publisher& p : publishers_) {
+    const auto& v = scene_.volume(p.volume);
     static const std::vector<BlockOrigin> kNone;
-    const bool fresh = v.millEpoch != publishedEpoch_[i];
-    publishedEpoch_[i] = v.millEpoch;
+    const bool fresh = v.millEpoch != p.epoch;
+    p.epoch = v.millEpoch;
     // Publishing with nothing new retries blocks the full channel refused earlier.
-    if (fresh || publishers_[i]->pending() > 0) publishers_[i]->publish(fresh ? v.changed.origins() : kNone);
+    if (fresh || p.publisher->pending() > 0) p.publisher->publish(fresh ? v.changed.origins() : kNone);
   }
 
   SafeWrench w;

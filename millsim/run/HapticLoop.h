@@ -102,7 +102,8 @@ public:
   HapticLoop& operator=(const HapticLoop&) = delete;
 
   // Before running: publish milled blocks of the scene's volume `index` into
-  // `channel` (the graphics side drains it into its VolumeReplica).
+  // `channel` (the graphics side drains it into its VolumeReplica; region
+  // accounting counts from it). A volume may have several channels.
   void publishBlocks(std::size_t index, BlockChannel& channel);
 
   // Simulated time on this thread: the next frame at t = frame / rate.
@@ -175,8 +176,14 @@ private:
   bool haveReading_ = false;
   double sampleTime_ = 0.0;
   long nextFrame_ = 0;
-  std::vector<std::unique_ptr<BlockPublisher>> publishers_;
-  std::vector<std::uint64_t> publishedEpoch_;
+  // Every consumer of milled blocks (graphics, region accounting), each with
+  // the volume it follows and the mill epoch it last saw.
+  struct Publisher {
+    std::size_t volume;
+    std::unique_ptr<BlockPublisher> publisher;
+    std::uint64_t epoch;
+  };
+  std::vector<Publisher> publishers_;
 
   SpscRing<FrameRecord> records_;
   TripleBuffer<FrameRecord> newest_;

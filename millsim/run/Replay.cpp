@@ -79,6 +79,7 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
 
   const std::string rendererName = run.rendererName;
   HapticLoop loop(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
+  if (options.onLoop) options.onLoop(loop);
   FrameLogWriter writer(log);
   if (options.onFrame) writer.observe(options.onFrame);
   for (long n = 0; n < frames; ++n) {
@@ -112,6 +113,7 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
 
   const std::string rendererName = run.rendererName;
   HapticLoop loop(*run.scene, std::move(run.algorithm), std::make_unique<RecordedOutput>(), run.settings);
+  if (options.onLoop) options.onLoop(loop);
   FrameLogWriter writer(log);
   if (options.onFrame) writer.observe(options.onFrame);
   int renderer = frames.front().renderer;

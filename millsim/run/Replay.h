@@ -21,6 +21,7 @@
 namespace millsim {
 
 struct FrameRecord;
+class HapticLoop;
 
 struct ReplayOptions {
   double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
@@ -28,6 +29,7 @@ struct ReplayOptions {
   bool timing = false;           // fill frame_us with measured compute time
   double until = std::numeric_limits<double>::infinity();  // stop after this trajectory time (s)
   std::function<void(const FrameRecord&)> onFrame;         // called with every frame, in order (the milling sound)
+  std::function<void(HapticLoop&)> onLoop;  // called once the loop is made, before the first frame (block channels)
 };
 
 struct ReplaySummary {

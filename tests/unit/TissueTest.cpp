@@ -1,14 +1,23 @@
-// Tissues: which material each voxel is (TissueMap), the phantom's labels,
-// and hardness — how fast each renderer's burr cuts a tissue under the same
-// hand (docs/algorithms.md, "Tissue hardness").
+// Lessons: tissues — which material each voxel is (TissueMap), the phantom's
+// labels, hardness (how fast each renderer's burr cuts a tissue under the
+// same hand; docs/algorithms.md, "Tissue hardness") — and the assessment
+// regions a lesson reports on (docs/lessons.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "measure/Renderers.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/lesson/ForbiddenRegion.h"
+#include "millsim/lesson/MillingTarget.h"
+#include "millsim/lesson/RegionAccounting.h"
+#include "millsim/run/Replay.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/x3d/X3DLoader.h"
 #include "millsim/devices/HandDevice.h"
 #include "millsim/run/HapticLoop.h"
 #include "millsim/volume/Tissue.h"
@@ -137,4 +146,103 @@ TEST(TissueHardness, HarderTissueLosesLessUnderTheSameHandWithEveryRenderer) {
     EXPECT_LT(hard, 0.6 * soft) << name << ": hardness 4 removed " << hard * 1e9 << " mm³, hardness 1 " << soft * 1e9;
     EXPECT_EQ(never, 0.0) << name << ": hardness 0 was cut";
   }
+}
+
+// ---- Assessment regions (MillingTarget, ForbiddenRegion) ----
+
+namespace {
+
+// The phantom at 0.2 mm, its tissues by label, a target over the occlusal
+// surface and the pulp forbidden; a TrajectoryDevice puts the burr where the
+// trajectory says.
+const char* kRegionScene = R"(<X3D><Scene>
+  <VolumeObject url='"phantom:tooth?size=128,128,88"' labelUrl='"phantom:tooth-labels?size=128,128,88"' isoValue="700">
+    <Tissue name="enamel" label="1"/><Tissue name="dentin" label="2"/><Tissue name="pulp" label="3" hardness="0.05"/>
+  </VolumeObject>
+  <MillingTarget name="cavity"><Transform translation="0 0.0083 0">
+    <Shape><Cylinder radius="0.0008" height="0.0025"/></Shape></Transform></MillingTarget>
+  <ForbiddenRegion name="pulp" tissues='"pulp"'/>
+  <TrajectoryDevice><MillTool tipRadius="0.0006" shaftRadius="0.0004" shaftLength="0.015"/><SurfacePointRenderer/></TrajectoryDevice>
+</Scene></X3D>)";
+
+struct RegionRun {
+  std::unique_ptr<Scene> scene;
+  std::vector<RegionResult> results;
+};
+
+// Straight down the tooth's axis from 12 mm to `bottom` (burr centre, m) in
+// `seconds`, milling, replayed up to `until`.
+RegionRun millDown(double bottom, double seconds, double until) {
+  RegionRun run;
+  LoadResult r = loadSceneString(kRegionScene, "regions.x3d", builtinRegistry());
+  EXPECT_TRUE(r.ok()) << r.report();
+  run.scene = std::move(r.scene);
+  const glm::dquat up(1, 0, 0, 0);
+  const Trajectory t({{0.0, Pose{{0, 0.012, 0}, up}, true},
+                      {seconds, Pose{{0, bottom, 0}, up}, true},
+                      {seconds + 0.5, Pose{{0, bottom, 0}, up}, true}});
+  RegionAccounting regions(*run.scene);
+  ReplayOptions options;
+  options.until = until;
+  options.onLoop = [&](HapticLoop& loop) {
+    for (std::size_t i = 0; i < regions.volumeCount(); ++i) loop.publishBlocks(i, regions.channel(i));
+  };
+  options.onFrame = [&](const FrameRecord& f) { regions.update(f.t); };
+  replay(*run.scene, t, nullptr, options);
+  regions.publishFields();
+  run.results = regions.results();
+  return run;
+}
+
+// What the burr removed from the pulp, counted over the whole volume against
+// a fresh phantom: independent of the accounting's blocks.
+double pulpRemovedRecount(const Scene& scene) {
+  const VolumeObject& vo = *scene.nodesOfType<VolumeObject>().front();
+  const VoxelVolume fresh = makeToothPhantom(parsePhantomUrl("phantom:tooth?size=128,128,88"));
+  const TissueMap& map = *vo.tissueMap();
+  const int pulp = map.find("pulp");
+  const double air = vo.airValue.get(), scale = 1.0 / (2.0 * (vo.isoValue.get() - air));
+  auto phi = [&](double v) { return std::clamp((v - air) * scale, 0.0, 1.0); };
+  const glm::dvec3 h = fresh.voxelSize();
+  double removed = 0.0;
+  for (auto it = fresh.grid().cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    if (map.labelAt(c.x(), c.y(), c.z()) != pulp) continue;
+    removed += std::max(0.0, phi(*it) - phi(vo.volume()->valueAt(c.x(), c.y(), c.z()))) * h.x * h.y * h.z;
+  }
+  return removed;
+}
+
+}  // namespace
+
+TEST(Regions, MillingOnlyInsideTheTargetReportsAFractionAndNoViolation) {
+  const RegionRun run = millDown(0.0078, 1.0, 1e9);
+  ASSERT_EQ(run.results.size(), 2u);
+  const RegionResult& cavity = run.results[0];
+  const RegionResult& pulp = run.results[1];
+  EXPECT_FALSE(cavity.forbidden);
+  EXPECT_GT(cavity.initial, 3e-9);  // about π·0.8²·2.5 mm³ of enamel and dentin
+  EXPECT_GT(cavity.fraction(), 0.1);
+  EXPECT_LE(cavity.fraction(), 1.0);
+  EXPECT_TRUE(pulp.forbidden);
+  EXPECT_EQ(pulp.removed, 0.0);
+  EXPECT_LT(pulp.firstViolation, 0.0);
+  const auto* target = run.scene->nodesOfType<MillingTarget>().front();
+  EXPECT_FLOAT_EQ(target->fraction.get(), float(cavity.fraction()));
+  EXPECT_FALSE(run.scene->nodesOfType<ForbiddenRegion>().front()->violated.get());
+}
+
+TEST(Regions, GoingOnIntoThePulpReportsWhenItWasFirstCut) {
+  const RegionRun deep = millDown(0.0035, 3.0, 1e9);
+  const RegionResult& pulp = deep.results[1];
+  ASSERT_GE(pulp.firstViolation, 0.0) << "the burr went 1.5 mm into the pulp and no violation was reported";
+  // The blocks, counted as they were milled, agree with a whole-volume recount.
+  EXPECT_NEAR(pulp.removed, pulpRemovedRecount(*deep.scene), 1e-3 * pulp.removed + 1e-15);
+  const auto* node = deep.scene->nodesOfType<ForbiddenRegion>().front();
+  EXPECT_TRUE(node->violated.get());
+  EXPECT_DOUBLE_EQ(node->firstViolationTime.get().seconds, pulp.firstViolation);
+  // The time is right within a few frames: nothing of the pulp was cut 3 ms
+  // before it, something was 3 ms after (recounted, not by the accounting).
+  EXPECT_EQ(pulpRemovedRecount(*millDown(0.0035, 3.0, pulp.firstViolation - 0.003).scene), 0.0);
+  EXPECT_GT(pulpRemovedRecount(*millDown(0.0035, 3.0, pulp.firstViolation + 0.003).scene), 0.0);
 }

@@ -1,0 +1,163 @@
+#include "LessonReport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace millsim::app {
+
+using Json = nlohmann::ordered_json;
+
+double lessonScore(const LessonReport& r) {
+  double sum = 0.0;
+  int targets = 0, violations = 0;
+  for (const RegionResult& g : r.regions) {
+    if (g.forbidden) {
+      violations += g.firstViolation >= 0.0;
+    } else {
+      sum += std::min(1.0, g.fraction());
+      ++targets;
+    }
+  }
+  if (targets == 0) return -1.0;
+  return 100.0 * sum / targets * std::pow(0.5, violations);
+}
+
+std::string reportJson(const LessonReport& r) {
+  Json j;
+  j["scene"] = r.scene;
+  j["renderer"] = r.renderer;
+  j["duration_s"] = r.duration;
+  j["removed_mm3"] = r.removed * 1e9;
+  j["peak_force_N"] = r.peakForce;
+  j["peak_torque_Nm"] = r.peakTorque;
+  j["targets"] = Json::array();
+  j["forbidden"] = Json::array();
+  for (const RegionResult& g : r.regions) {
+    if (g.forbidden) {
+      Json f{{"name", g.name}, {"removed_mm3", g.removed * 1e9}};
+      f["first_violation_s"] = g.firstViolation >= 0.0 ? Json(g.firstViolation) : Json(nullptr);
+      j["forbidden"].push_back(f);
+    } else {
+      j["targets"].push_back(
+          Json{{"name", g.name}, {"removed_mm3", g.removed * 1e9}, {"fraction", g.fraction()}, {"initial_mm3", g.initial * 1e9}});
+    }
+  }
+  const double score = lessonScore(r);
+  j["score"] = score >= 0.0 ? Json(score) : Json(nullptr);
+  return j.dump(2) + "\n";
+}
+
+void writeReport(const std::string& path, const LessonReport& r) {
+  std::ofstream out(path, std::ios::binary);
+  out << reportJson(r);
+  out.close();
+  if (!out) throw std::runtime_error(path + ": cannot write the report");
+}
+
+LessonReport readReport(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot read the report");
+  Json j;
+  try {
+    j = Json::parse(in);
+  } catch (const Json::parse_error& e) {
+    throw std::runtime_error(path + ": not a JSON report (" + e.what() + ")");
+  }
+  auto need = [&](const Json& o, const char* key, const char* where) -> const Json& {
+    if (!o.is_object() || !o.contains(key))
+      throw std::runtime_error(path + ": " + where + " has no \"" + key + "\" (is it a millsim report?)");
+    return o[key];
+  };
+  auto number = [&](const Json& o, const char* key, const char* where) {
+    const Json& v = need(o, key, where);
+    if (!v.is_number()) throw std::runtime_error(path + ": \"" + key + "\" in " + where + " must be a number, found " + v.dump());
+    return v.get<double>();
+  };
+  auto text = [&](const Json& o, const char* key, const char* where) {
+    const Json& v = need(o, key, where);
+    if (!v.is_string()) throw std::runtime_error(path + ": \"" + key + "\" in " + where + " must be a string, found " + v.dump());
+    return v.get<std::string>();
+  };
+  LessonReport r;
+  r.scene = text(j, "scene", "the report");
+  r.renderer = text(j, "renderer", "the report");
+  r.duration = number(j, "duration_s", "the report");
+  r.removed = number(j, "removed_mm3", "the report") * 1e-9;
+  r.peakForce = number(j, "peak_force_N", "the report");
+  r.peakTorque = number(j, "peak_torque_Nm", "the report");
+  for (const Json& t : need(j, "targets", "the report")) {
+    RegionResult g;
+    g.name = text(t, "name", "a target");
+    g.removed = number(t, "removed_mm3", "a target") * 1e-9;
+    const double fraction = number(t, "fraction", "a target");
+    g.initial = t.contains("initial_mm3") && t["initial_mm3"].is_number() ? t["initial_mm3"].get<double>() * 1e-9
+                : fraction > 0.0                                         ? g.removed / fraction
+                                                                         : 0.0;
+    r.regions.push_back(g);
+  }
+  for (const Json& f : need(j, "forbidden", "the report")) {
+    RegionResult g;
+    g.forbidden = true;
+    g.name = text(f, "name", "a forbidden region");
+    g.removed = number(f, "removed_mm3", "a forbidden region") * 1e-9;
+    const Json& first = need(f, "first_violation_s", "a forbidden region");
+    g.firstViolation = first.is_null() ? -1.0 : number(f, "first_violation_s", "a forbidden region");
+    r.regions.push_back(g);
+  }
+  return r;
+}
+
+std::string describeReport(const LessonReport& r, bool markdown) {
+  std::ostringstream o;
+  o << std::fixed;
+  const double score = lessonScore(r);
+  const std::string scoreText = score >= 0.0 ? (std::ostringstream() << std::fixed << std::setprecision(1) << score).str()
+                                             : std::string("none (the lesson has no MillingTarget)");
+  if (markdown) {
+    o << "# Lesson report: " << r.scene << "\n\n"
+      << "| | |\n|---|---|\n"
+      << "| renderer | " << r.renderer << " |\n"
+      << "| duration | " << std::setprecision(2) << r.duration << " s |\n"
+      << "| removed | " << std::setprecision(3) << r.removed * 1e9 << " mm³ |\n"
+      << "| peak force | " << std::setprecision(2) << r.peakForce << " N |\n"
+      << "| peak torque | " << std::setprecision(4) << r.peakTorque << " N·m |\n"
+      << "| **score** | **" << scoreText << "** |\n\n";
+    o << "| region | kind | removed (mm³) | result |\n|---|---|---|---|\n";
+    for (const RegionResult& g : r.regions) {
+      o << "| " << g.name << " | " << (g.forbidden ? "forbidden" : "target") << " | " << std::setprecision(3)
+        << g.removed * 1e9 << " | ";
+      if (g.forbidden)
+        o << (g.firstViolation >= 0.0 ? "violated at " + (std::ostringstream() << std::fixed << std::setprecision(3) << g.firstViolation).str() + " s"
+                                      : std::string("not touched"));
+      else
+        o << std::setprecision(1) << 100.0 * g.fraction() << " % removed";
+      o << " |\n";
+    }
+    return o.str();
+  }
+  o << "lesson report: " << r.scene << "\n"
+    << "  renderer " << r.renderer << ", " << std::setprecision(2) << r.duration << " s, removed "
+    << std::setprecision(3) << r.removed * 1e9 << " mm³, peak force " << std::setprecision(2) << r.peakForce
+    << " N, peak torque " << std::setprecision(4) << r.peakTorque << " N·m\n";
+  for (const RegionResult& g : r.regions) {
+    o << "  " << (g.forbidden ? "forbidden " : "target    ") << g.name << ": removed " << std::setprecision(3)
+      << g.removed * 1e9 << " mm³";
+    if (g.forbidden)
+      o << (g.firstViolation >= 0.0
+                ? ", VIOLATED at " + (std::ostringstream() << std::fixed << std::setprecision(3) << g.firstViolation).str() + " s"
+                : std::string(", not touched"));
+    else
+      o << " (" << std::setprecision(1) << 100.0 * g.fraction() << " % of it)";
+    o << "\n";
+  }
+  o << "  score " << scoreText << "\n";
+  return o.str();
+}
+
+}  // namespace millsim::app

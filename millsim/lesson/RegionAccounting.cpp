@@ -1,0 +1,210 @@
+#include "millsim/lesson/RegionAccounting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <glm/matrix.hpp>
+
+#include "millsim/core/Scene.h"
+#include "millsim/lesson/ForbiddenRegion.h"
+#include "millsim/lesson/MillingTarget.h"
+#include "millsim/std/Box.h"
+#include "millsim/std/Cylinder.h"
+#include "millsim/std/Group.h"
+#include "millsim/std/SceneWalk.h"
+#include "millsim/std/Shape.h"
+#include "millsim/std/Sphere.h"
+#include "millsim/std/Transform.h"
+#include "millsim/volume/PlacedVolumes.h"
+#include "millsim/volume/TissueMap.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+namespace {
+// Blocks a volume's channel holds before the publisher keeps the rest pending
+// (2048 blocks of 2 KiB: a second of heavy milling).
+constexpr std::size_t kChannelBlocks = 2048;
+// Removed volume, in voxels, below which a forbidden region counts as untouched:
+// float rounding of φ, never a cut.
+constexpr double kViolationVoxels = 1e-3;
+}  // namespace
+
+struct RegionAccounting::Shape {
+  enum class Kind { Box, Sphere, Cylinder } kind;
+  glm::dmat4 worldToShape;
+  glm::dvec3 size;  // Box: full size; Sphere: radius in x; Cylinder: radius in x, height in y
+  bool contains(const glm::dvec3& world) const {
+    const glm::dvec3 p = glm::dvec3(worldToShape * glm::dvec4(world, 1.0));
+    switch (kind) {
+      case Kind::Box: return std::abs(p.x) <= 0.5 * size.x && std::abs(p.y) <= 0.5 * size.y && std::abs(p.z) <= 0.5 * size.z;
+      case Kind::Sphere: return p.x * p.x + p.y * p.y + p.z * p.z <= size.x * size.x;
+      case Kind::Cylinder: return std::abs(p.y) <= 0.5 * size.y && p.x * p.x + p.z * p.z <= size.x * size.x;
+    }
+    return false;
+  }
+};
+
+struct RegionAccounting::Region {
+  AssessmentRegion* node;
+  std::vector<Shape> shapes;
+  std::vector<std::vector<int>> labels;  // per volume: the TissueMap entries that are in the region
+  bool contains(std::size_t volume, const glm::dvec3& world, int label) const {
+    for (int l : labels[volume])
+      if (l == label) return true;
+    for (const Shape& s : shapes)
+      if (s.contains(world)) return true;
+    return false;
+  }
+};
+
+struct RegionAccounting::Volume {
+  const VoxelVolume* live;
+  std::unique_ptr<VoxelVolume> start;  // the densities before milling
+  glm::dmat4 localToWorld;
+  const TissueMap* tissues;
+  double air, phiScale, voxelVolume;
+  BlockChannel channel{kChannelBlocks};
+  std::unordered_map<std::uint64_t, std::vector<double>> contribution;  // per block, per region (m³)
+  double phi(double v) const { return std::clamp((v - air) * phiScale, 0.0, 1.0); }
+  glm::dvec3 world(int i, int j, int k) const {
+    return glm::dvec3(localToWorld * glm::dvec4(start->indexToLocal(glm::dvec3(i, j, k)), 1.0));
+  }
+  int label(int i, int j, int k) const { return tissues ? tissues->labelAt(i, j, k) : 0; }
+};
+
+RegionAccounting::RegionAccounting(const Scene& scene) {
+  for (const PlacedVolume& p : placedVolumes(scene)) {
+    auto v = std::make_unique<Volume>();
+    const VoxelVolume& live = *p.node->volume();
+    v->live = &live;
+    v->start = std::make_unique<VoxelVolume>(live.grid().deepCopy(), live.dims(), live.voxelSize(), live.airValue());
+    v->localToWorld = p.localToWorld;
+    v->tissues = p.node->tissueMap();
+    v->air = live.airValue();
+    v->phiScale = 1.0 / (2.0 * (double(p.node->isoValue.get()) - v->air));
+    const glm::dvec3 h = live.voxelSize();
+    v->voxelVolume = h.x * h.y * h.z * std::abs(glm::determinant(glm::dmat3(p.localToWorld)));
+    volumes_.push_back(std::move(v));
+  }
+
+  // Regions where they sit, with the shapes among their children.
+  walkScene(scene, [&](Node& n, const WalkFrame& at) {
+    auto* node = dynamic_cast<AssessmentRegion*>(&n);
+    if (!node) return;
+    auto r = std::make_unique<Region>();
+    r->node = node;
+    std::function<void(const Node&, const glm::dmat4&)> gather = [&](const Node& c, const glm::dmat4& m) {
+      if (const auto* t = dynamic_cast<const Transform*>(&c)) {
+        const glm::dmat4 inner = m * glm::dmat4(t->localMatrix());
+        for (const auto& k : t->children.get()) gather(*k, inner);
+      } else if (const auto* g = dynamic_cast<const GroupingNode*>(&c)) {
+        for (const auto& k : g->children.get()) gather(*k, m);
+      } else if (const auto* s = dynamic_cast<const millsim::Shape*>(&c)) {
+        const Node* geometry = s->geometry.get().get();
+        const glm::dmat4 inverse = glm::inverse(m);
+        if (const auto* b = dynamic_cast<const Box*>(geometry))
+          r->shapes.push_back({Shape::Kind::Box, inverse, glm::dvec3(b->size.get())});
+        else if (const auto* sp = dynamic_cast<const Sphere*>(geometry))
+          r->shapes.push_back({Shape::Kind::Sphere, inverse, glm::dvec3(sp->radius.get(), 0, 0)});
+        else if (const auto* cy = dynamic_cast<const Cylinder*>(geometry))
+          r->shapes.push_back({Shape::Kind::Cylinder, inverse, glm::dvec3(cy->radius.get(), cy->height.get(), 0)});
+      }
+    };
+    for (const auto& c : node->children.get()) gather(*c, at.localToWorld);
+    r->labels.resize(volumes_.size());
+    for (const std::string& name : node->tissues.get()) {
+      bool found = false;
+      for (std::size_t i = 0; i < volumes_.size(); ++i)
+        if (const int l = volumes_[i]->tissues ? volumes_[i]->tissues->find(name) : 0; l > 0) {
+          r->labels[i].push_back(l);
+          found = true;
+        }
+      if (!found)
+        throw std::runtime_error(node->location().str() + ": " + node->typeName() + " '" + node->name.get() +
+                                 "' names tissue '" + name + "', which no VolumeObject's tissues has");
+    }
+    regions_.push_back(std::move(r));
+  });
+
+  // The material each region holds at the start.
+  results_.resize(regions_.size());
+  for (std::size_t r = 0; r < regions_.size(); ++r) {
+    results_[r].name = regions_[r]->node->name.get();
+    results_[r].forbidden = dynamic_cast<ForbiddenRegion*>(regions_[r]->node) != nullptr;
+  }
+  if (regions_.empty()) return;
+  for (std::size_t vi = 0; vi < volumes_.size(); ++vi) {
+    const Volume& v = *volumes_[vi];
+    for (auto it = v.start->grid().cbeginValueOn(); it; ++it) {
+      const double phi0 = v.phi(*it);
+      if (phi0 <= 0.0) continue;
+      const openvdb::Coord c = it.getCoord();
+      const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
+      const int label = v.label(c.x(), c.y(), c.z());
+      for (std::size_t r = 0; r < regions_.size(); ++r)
+        if (regions_[r]->contains(vi, w, label)) results_[r].initial += phi0 * v.voxelVolume;
+    }
+  }
+}
+
+RegionAccounting::~RegionAccounting() = default;
+
+BlockChannel& RegionAccounting::channel(std::size_t volume) { return volumes_.at(volume)->channel; }
+
+void RegionAccounting::update(double t) {
+  for (std::size_t i = 0; i < volumes_.size(); ++i)
+    volumes_[i]->channel.drain([&](const BlockUpdate& b) { count(i, b, t); });
+}
+
+void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t) {
+  Volume& v = *volumes_[vi];
+  const openvdb::Coord origin(block.origin.x, block.origin.y, block.origin.z);
+  const auto* startLeaf = v.start->grid().tree().probeConstLeaf(origin);
+  std::vector<double> now(regions_.size(), 0.0);
+  if (startLeaf) {  // a block that started as air has nothing to lose
+    for (int z = 0; z < 8; ++z)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+          const openvdb::Coord c = origin + openvdb::Coord(x, y, z);
+          const double lost = v.phi(startLeaf->getValue(c)) - v.phi(block.values[std::size_t((z * 8 + y) * 8 + x)]);
+          if (lost <= 0.0) continue;
+          const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
+          const int label = v.label(c.x(), c.y(), c.z());
+          for (std::size_t r = 0; r < regions_.size(); ++r)
+            if (regions_[r]->contains(vi, w, label)) now[r] += lost * v.voxelVolume;
+        }
+  }
+  const std::uint64_t key = (std::uint64_t(std::uint32_t(block.origin.x) >> 3)) |
+                            (std::uint64_t(std::uint32_t(block.origin.y) >> 3) << 21) |
+                            (std::uint64_t(std::uint32_t(block.origin.z) >> 3) << 42);
+  std::vector<double>& before = v.contribution[key];
+  before.resize(regions_.size(), 0.0);
+  for (std::size_t r = 0; r < regions_.size(); ++r) {
+    results_[r].removed += now[r] - before[r];
+    if (results_[r].forbidden && results_[r].firstViolation < 0.0 && results_[r].removed > kViolationVoxels * v.voxelVolume)
+      results_[r].firstViolation = t;
+  }
+  before = std::move(now);
+}
+
+void RegionAccounting::publishFields() {
+  for (std::size_t r = 0; r < regions_.size(); ++r) {
+    AssessmentRegion& node = *regions_[r]->node;
+    const RegionResult& res = results_[r];
+    if (node.removedVolume.get() != float(res.removed)) node.removedVolume.set(float(res.removed));
+    if (auto* target = dynamic_cast<MillingTarget*>(&node); target && target->fraction.get() != float(res.fraction()))
+      target->fraction.set(float(res.fraction()));
+    if (auto* forbidden = dynamic_cast<ForbiddenRegion*>(&node); forbidden && res.firstViolation >= 0.0 &&
+                                                                   !forbidden->violated.get()) {
+      forbidden->firstViolationTime.set(Time{res.firstViolation});
+      forbidden->violated.set(true);
+    }
+  }
+}
+
+}  // namespace millsim
