@@ -109,13 +109,13 @@ public:
     // once, which lets the hand push through any tissue unopposed): the cut
     // front advances towards the device at the feed speed, and the penalty
     // force meets what is not cut yet.
-    // Past half immersion the force is held (eq. 17) and says nothing about
-    // how hard the hand pushes (a device that jumped in holds zero): the feed
-    // then takes the penalty of the burr's distance past the cut front, k/2
-    // per metre (about half the burr's points collide there).
+    // Past half immersion the force is held (eq. 17); a device that jumped in
+    // (the mouse does) holds zero and would never cut: the feed then takes
+    // the penalty of the burr's distance past the cut front, k/2 per metre
+    // (about half the burr's points collide there).
     const bool touching = out.contacts > 0 || (out.flags & kFlagHeldForce) != 0;
     double push = glm::length(out.force);
-    if (touching && scene.inside(c)) push = std::max(push, 0.5 * k_ * glm::length(c - cut_.centre()));
+    if (touching && !(push > 0.0) && scene.inside(c)) push = 0.5 * k_ * glm::length(c - cut_.centre());
     cut_.step(scene, feed_, c, c, touching, in.milling, push, in.dt);
     out.burrCentre = cut_.centre();
     sanitize(out, device);
