@@ -48,6 +48,7 @@ struct Constraint {
   Vec6 a = Vec6::Zero();
   glm::dvec3 centre{0.0}, normal{0.0};  // the tool sphere's centre (burr centre or shaft axis point), material normal
   double radius = 0.0;
+  double t = 0.0;  // where along the shaft axis (0: the burr centre)
   bool shaft = false;
   int piece = 0;
 };
@@ -83,13 +84,14 @@ std::vector<Constraint> gather(const Material& m, const ToolGeometry& tool, cons
   std::vector<Constraint> out;
   const glm::dvec3 dir = fr.R * glm::dvec3(0.0, 1.0, 0.0);
   const Eigen::Matrix3d jlT = leftJacobian(fr.phi).transpose();
-  auto add = [&](int piece, const glm::dvec3& c, double radius, bool shaft) {
+  auto add = [&](int piece, double t, double radius, bool shaft) {
+    const glm::dvec3 c = fr.x + dir * t;
     const Fn& f = m.pieces[std::size_t(piece)];
     Constraint k;
     k.g = f(c) - radius;
     if (deepest) *deepest = std::min(*deepest, k.g);
     if (k.g >= margin) return;
-    k.centre = c, k.radius = radius, k.shaft = shaft, k.piece = piece;
+    k.centre = c, k.radius = radius, k.t = t, k.shaft = shaft, k.piece = piece;
     k.normal = gradient(f, c);
     k.a.head<3>() << k.normal.x, k.normal.y, k.normal.z;
     if (rotate) {
@@ -102,7 +104,7 @@ std::vector<Constraint> gather(const Material& m, const ToolGeometry& tool, cons
   std::vector<double> v(std::size_t(n) + 1);
   for (std::size_t i = 0; i < m.pieces.size(); ++i) {
     const Fn& f = m.pieces[i];
-    add(int(i), fr.x, tool.tipRadius, false);
+    add(int(i), 0.0, tool.tipRadius, false);
     for (int j = 0; j <= n; ++j) {
       v[std::size_t(j)] = f(fr.x + dir * (tool.shaftLength * j / n));
       if (deepest) *deepest = std::min(*deepest, v[std::size_t(j)] - tool.shaftRadius);
@@ -116,10 +118,44 @@ std::vector<Constraint> gather(const Material& m, const ToolGeometry& tool, cons
       if (left && right && j != 0 && j != n)
         t = refineMinimum([&](double u) { return f(fr.x + dir * u); }, tool.shaftLength * (j - 1) / n,
                           tool.shaftLength * (j + 1) / n);
-      add(int(i), fr.x + dir * t, tool.shaftRadius, true);
+      add(int(i), t, tool.shaftRadius, true);
     }
   }
   return out;
+}
+
+// The clearance of one constraint's tool sphere at the scaled pose w: the burr, or
+// the shaft's local minimum near the constraint's axis position (re-found at w).
+double clearanceAt(const Material& m, const ToolGeometry& tool, const Constraint& c, const Vec6& w,
+                   const Pose& device, double s, bool rotate, const ReferenceTolerance& tol) {
+  const Frame fr = frameOf(w, device, s, rotate);
+  const Fn& f = m.pieces[std::size_t(c.piece)];
+  if (!c.shaft) return f(fr.x) - c.radius;
+  const glm::dvec3 dir = fr.R * glm::dvec3(0.0, 1.0, 0.0);
+  const double half = 2.0 * tool.shaftLength / std::max(2, tol.shaftSamples);
+  const double t = refineMinimum([&](double u) { return f(fr.x + dir * u); }, std::max(0.0, c.t - half),
+                                 std::min(tool.shaftLength, c.t + half));
+  return f(fr.x + dir * t) - c.radius;
+}
+
+// The Hessian of that clearance in the scaled variables, by central differences.
+Eigen::Matrix<double, 6, 6> clearanceHessian(const Material& m, const ToolGeometry& tool, const Constraint& c,
+                                             const Vec6& v, const Pose& device, double s, bool rotate,
+                                             const ReferenceTolerance& tol) {
+  const double e = 1e-6;  // m: well below the curvature radii (≥ 0.1 mm), well above round-off
+  const int n = rotate ? 6 : 3;
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  auto g = [&](int i, double di, int j, double dj) {
+    Vec6 w = v;
+    w(i) += di, w(j) += dj;
+    return clearanceAt(m, tool, c, w, device, s, rotate, tol);
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = i; j < n; ++j) {
+      H(i, j) = (g(i, e, j, e) - g(i, e, j, -e) - g(i, -e, j, e) + g(i, -e, j, -e)) / (4.0 * e * e);
+      H(j, i) = H(i, j);
+    }
+  return H;
 }
 
 // min ½|w|² subject to Aw ≥ b through its dual: min ½λᵀQλ − bᵀλ, λ ≥ 0, Q = AAᵀ
@@ -193,37 +229,64 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
   PhysicalPose out;
   Vec6 v = Vec6::Zero();
   Eigen::VectorXd lambda;
-  std::vector<Constraint> cons;
+  std::vector<Constraint> cons, active;
+  std::vector<double> activeLambda;
+  auto violationAt = [&](const Vec6& w) {
+    double deepest = std::numeric_limits<double>::infinity();
+    gather(material, tool, frameOf(w, device, s, rotate), s, rotate, tol, 1.0, &deepest);
+    return std::max(0.0, -deepest);
+  };
   for (int it = 0; it < tol.maxIterations; ++it) {
     out.iterations = it + 1;
     cons = gather(material, tool, frameOf(v, device, s, rotate), s, rotate, tol, margin, nullptr);
     const int m = int(cons.size());
     Eigen::MatrixXd A(m, 6);
     Eigen::VectorXd b(m);
+    for (int j = 0; j < m; ++j) A.row(j) = cons[std::size_t(j)].a.transpose();
+    // The QP's Hessian: the Lagrangian's, I − Σλ∇²g with the last multipliers (the surfaces'
+    // curvature; without it a tool wedged against curved walls overshoots), kept positive definite.
+    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Identity();
+    for (std::size_t j = 0; j < active.size(); ++j)
+      H -= activeLambda[j] * clearanceHessian(material, tool, active[j], v, device, s, rotate, tol);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(H);
+    const Eigen::Matrix<double, 6, 6> Hpd =
+        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.05).asDiagonal() * eig.eigenvectors().transpose();
+    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(Hpd);
+    const Eigen::Matrix<double, 6, 6> L = llt.matrixL();
+    // With e = Lᵀd and w = e + L⁻¹v the QP min vᵀd + ½dᵀHd, g + Ad ≥ 0 is the projection
+    // min ½|w|², Ãw ≥ b̃ with Ã = AL⁻ᵀ, b̃ = ÃL⁻¹v − g.
+    const Vec6 linv_v = L.triangularView<Eigen::Lower>().solve(v);
+    Eigen::MatrixXd At(m, 6);
     for (int j = 0; j < m; ++j) {
-      A.row(j) = cons[std::size_t(j)].a.transpose();
-      b(j) = cons[std::size_t(j)].a.dot(v) - cons[std::size_t(j)].g;
+      At.row(j) = L.triangularView<Eigen::Lower>().solve(Vec6(A.row(j).transpose())).transpose();
+      b(j) = At.row(j).dot(linv_v) - cons[std::size_t(j)].g;
     }
     // A tiny ridge keeps the dual strictly convex when more contacts than degrees of freedom
     // are active (a tool wedged in a hole); it lets each constraint miss by 1e-12·λ (≈1e-15 m).
-    const Eigen::MatrixXd Q = A * A.transpose() + 1e-12 * Eigen::MatrixXd::Identity(m, m);
+    const Eigen::MatrixXd Q = At * At.transpose() + 1e-12 * Eigen::MatrixXd::Identity(m, m);
     lambda = m > 0 ? solveDual(Q, b) : Eigen::VectorXd();
-    const Vec6 next = m > 0 ? Vec6(A.transpose() * lambda) : Vec6::Zero();
-    const double step = (next - v).norm();
-    v = next;
-    if (step < tol.step) {
-      double deepest = std::numeric_limits<double>::infinity();
-      gather(material, tool, frameOf(v, device, s, rotate), s, rotate, tol, 1.0, &deepest);
-      out.violation = std::max(0.0, -deepest);
-      out.converged = out.violation <= tol.violation;
-      break;
+    const Vec6 wq = m > 0 ? Vec6(At.transpose() * lambda) : Vec6::Zero();
+    const Vec6 next = v + Vec6(L.transpose().triangularView<Eigen::Upper>().solve(Vec6(wq - linv_v)));
+    active.clear(), activeLambda.clear();
+    for (int j = 0; j < m; ++j)
+      if (lambda(j) > 0.0) active.push_back(cons[std::size_t(j)]), activeLambda.push_back(lambda(j));
+    // Backtrack on the exact-penalty merit ½|v|² + μ·(deepest penetration), μ above the
+    // multipliers' sum: the linearisation ignores the surfaces' curvature, and a tool
+    // wedged against curved walls otherwise jumps between two poses for ever.
+    const double mu = 2.0 * (m > 0 ? lambda.sum() : 0.0) + 1e-12;
+    auto merit = [&](const Vec6& w) { return 0.5 * w.squaredNorm() + mu * violationAt(w); };
+    const double m0 = merit(v);
+    Vec6 trial = next;
+    for (double alpha = 1.0; alpha > 1e-6; alpha *= 0.5) {
+      trial = v + alpha * (next - v);
+      if (merit(trial) <= m0 + 1e-20) break;
     }
+    const double step = (trial - v).norm();
+    v = trial;
+    if (step < tol.step) break;
   }
-  if (!out.converged) {
-    double deepest = std::numeric_limits<double>::infinity();
-    gather(material, tool, frameOf(v, device, s, rotate), s, rotate, tol, 1.0, &deepest);
-    out.violation = std::max(0.0, -deepest);
-  }
+  out.violation = violationAt(v);
+
   const Frame fr = frameOf(v, device, s, rotate);
   out.pose = Pose{fr.x, fr.R};
   out.force = metric.k * (fr.x - device.position);
@@ -244,6 +307,8 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
   const double fn = glm::length(out.force);
   out.stationarity = (glm::length(out.force - sumF) + glm::length(out.torque - sumT) / tool.shaftLength) /
                      std::max(fn, 1e-3);
+  out.converged = out.iterations < tol.maxIterations && out.violation <= tol.violation &&
+                  out.stationarity <= tol.stationarity;
   if (fn > 0.0) {
     out.actionAxis = out.force / fn;
     out.actionPoint = fr.x + glm::cross(out.force, out.torque) / (fn * fn);

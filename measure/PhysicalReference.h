@@ -35,7 +35,8 @@ struct CouplingMetric {
 struct ReferenceTolerance {
   double violation = 1e-10;  // m: the deepest any tool point may stay inside material
   double step = 1e-11;       // m (and m-equivalent for rotation): converged when the last step is smaller
-  int maxIterations = 400;
+  double stationarity = 1e-6;  // KKT residual, relative (PhysicalPose::stationarity)
+  int maxIterations = 200;
   int shaftSamples = 400;    // samples along the shaft axis between which each local minimum is refined
 };
 

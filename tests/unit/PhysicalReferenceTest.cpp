@@ -1,6 +1,7 @@
 // The physical reference solver (measure/PhysicalReference.h) on cases whose
 // answers are worked out by hand: a burr pressed into a half-space, a burr on a
-// ball pushed obliquely, a tilted tool on a plane, a shaft resting on an edge.
+// ball pushed obliquely, a tilted tool on a plane, a shaft resting on an edge,
+// a tool in a drilled hole; and its convergence on every pose the suite uses.
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "measure/PhysicalReference.h"
+#include "measure/PhysicalScenes.h"
 
 namespace {
 
@@ -168,6 +170,28 @@ TEST(PhysicalReference, ToolInDrilledHole) {
     EXPECT_GT(wedged.pose.position.y, -D + kTool.tipRadius + 1e-5) << "lifted off the bottom";
     EXPECT_GT(wedged.torque.z, 0.0);
   }
+}
+
+// Every pose of the physical suite (measure/PhysicalScenes.h), at every voxel
+// size's sub-voxel phases, with the orientation held and with #3's coupling
+// ratio: the solver meets its tolerances, and every reported contact force pushes out.
+TEST(PhysicalReference, ConvergesOnEverySuitePose) {
+  int poses = 0;
+  for (const std::string& name : physicalSceneNames()) {
+    const PhysicalScene scene = physicalScene(name);
+    for (double h : {0.2e-3, 0.1e-3, 0.05e-3})
+      for (const PhysicalProbe& probe : physicalProbes(scene, kTool, h, 2))
+        for (double kr : {kKr, std::numeric_limits<double>::infinity()}) {
+          const PhysicalPose p = constrainedPose(scene.material, kTool, probe.device, {kK, kr});
+          ++poses;
+          ASSERT_TRUE(p.converged) << name << " h " << h << " depth " << probe.depth << " kr " << kr << ": "
+                                   << p.iterations << " iterations, penetration " << p.violation
+                                   << " m, KKT residual " << p.stationarity;
+          EXPECT_GT(glm::length(p.force), 0.0) << name << ": every probe is pressed into material";
+          for (const auto& c : p.contacts) EXPECT_GT(c.force, 0.0);
+        }
+  }
+  EXPECT_GT(poses, 500);
 }
 
 }  // namespace
