@@ -86,7 +86,9 @@ PhysicalScene physicalScene(const std::string& name) {
 
 std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const ToolGeometry& tool, double h, int phases) {
   std::vector<PhysicalProbe> out;
-  const std::vector<double> burrDepths{0.05e-3, 0.1e-3, 0.2e-3, 0.3e-3}, shaftDepths{0.05e-3, 0.1e-3, 0.15e-3, 0.2e-3};
+  // 0.6 mm puts the burr centre itself 0.1 mm inside, where a centre-point method first feels anything.
+  const std::vector<double> burrDepths{0.05e-3, 0.1e-3, 0.2e-3, 0.3e-3, 0.6e-3}, holeDepths{0.05e-3, 0.1e-3, 0.2e-3, 0.3e-3},
+      shaftDepths{0.05e-3, 0.1e-3, 0.15e-3, 0.2e-3};
   const glm::dvec3 phaseDir = glm::normalize(glm::dvec3(1.0, 0.0, 0.5));
   for (int ph = 0; ph < std::max(1, phases); ++ph) {
     const glm::dvec3 shift = phaseDir * (h * ph / std::max(1, phases));
@@ -104,7 +106,7 @@ std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const Tool
     if (scene.name == "hole") {
       // Tilted toward +x, the burr pushed d into the −x wall and the bottom; at 30° the shaft also meets
       // the far rim. The phase shifts along Z (the wall curves away a little).
-      for (double d : burrDepths)
+      for (double d : holeDepths)
         for (double deg : {15.0, 30.0}) {
           const double th = deg * kDeg;
           const glm::dvec3 dir(std::sin(th), std::cos(th), 0.0);

@@ -29,7 +29,7 @@ struct PhysicalProbe {
   double depth = 0.0;  // how far the pressed part (burr or shaft surface) is pushed past the surface (m)
 };
 
-// Depths 0.05, 0.1, 0.2, 0.3 mm of the burr (0.05–0.2 mm of the shaft) × tilts ×
+// Depths 0.05, 0.1, 0.2, 0.3, 0.6 mm of the burr (0.05–0.3 mm in the hole, 0.05–0.2 mm of the shaft) × tilts ×
 // `phases` sub-voxel shifts of the whole pose (0, 0.37h, ... along (1, 0, ½)).
 std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const ToolGeometry& tool, double h, int phases);
 
