@@ -224,13 +224,15 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
                              const CouplingMetric& metric, const ReferenceTolerance& tol) {
   const bool rotate = std::isfinite(metric.kr);
   const double s = rotate ? std::sqrt(metric.kr / metric.k) : 1.0;  // m: the metric's length scale
-  // Constraints further than this from contact cannot become active in one step.
+  // Constraints further than this from contact stay out of the QP (an iteration whose
+  // step brings one closer takes it in next time; the line search sees every one).
   const double margin = 0.5 * tool.tipRadius + 1e-4;
   PhysicalPose out;
   Vec6 v = Vec6::Zero();
   Eigen::VectorXd lambda;
   std::vector<Constraint> cons, active;
   std::vector<double> activeLambda;
+  bool stepConverged = false;
   auto violationAt = [&](const Vec6& w) {
     double deepest = std::numeric_limits<double>::infinity();
     gather(material, tool, frameOf(w, device, s, rotate), s, rotate, tol, 1.0, &deepest);
@@ -271,8 +273,8 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
     for (int j = 0; j < m; ++j)
       if (lambda(j) > 0.0) active.push_back(cons[std::size_t(j)]), activeLambda.push_back(lambda(j));
     // Backtrack on the exact-penalty merit ½|v|² + μ·(deepest penetration), μ above the
-    // multipliers' sum: the linearisation ignores the surfaces' curvature, and a tool
-    // wedged against curved walls otherwise jumps between two poses for ever.
+    // multipliers' sum: a safeguard where the clamped Hessian still misjudges the
+    // curvature (a convex rim) or a constraint outside the margin comes into play.
     const double mu = 2.0 * (m > 0 ? lambda.sum() : 0.0) + 1e-12;
     auto merit = [&](const Vec6& w) { return 0.5 * w.squaredNorm() + mu * violationAt(w); };
     const double m0 = merit(v);
@@ -283,7 +285,10 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
     }
     const double step = (trial - v).norm();
     v = trial;
-    if (step < tol.step) break;
+    if (step < tol.step) {
+      stepConverged = true;
+      break;
+    }
   }
   out.violation = violationAt(v);
 
@@ -307,7 +312,7 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
   const double fn = glm::length(out.force);
   out.stationarity = (glm::length(out.force - sumF) + glm::length(out.torque - sumT) / tool.shaftLength) /
                      std::max(fn, 1e-3);
-  out.converged = out.iterations < tol.maxIterations && out.violation <= tol.violation &&
+  out.converged = stepConverged && out.violation <= tol.violation &&
                   out.stationarity <= tol.stationarity;
   if (fn > 0.0) {
     out.actionAxis = out.force / fn;
