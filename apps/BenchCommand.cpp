@@ -163,8 +163,8 @@ int runPhysical(const PhysicalArgs& a) {
   for (const auto& r : rows) worstViolation = std::max(worstViolation, r.refViolation), converged = converged && r.refConverged;
   std::ostringstream md;
   md << "| renderer | h (mm) | poses | felt k (N/m) | force RMS (%) | own law (%) | direction RMS (°) | own law (°) | "
-        "no force (%) | torque RMS | moment arm RMS (mm) | shaft arm RMS (%) | drawn (voxels) | drawn (°) | p99 (µs) |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "no force (%) | torque RMS | moment arm RMS (mm) | shaft arm RMS (%) | line of action (mm) | drawn (voxels) | "
+        "drawn (°) | p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     if (r.scene != "all") continue;
     const auto it = ownRows.find({r.renderer, r.h * 1e3});
@@ -172,18 +172,18 @@ int runPhysical(const PhysicalArgs& a) {
     md << "| " << r.renderer << " | " << fmt(r.h * 1e3) << " | " << r.poses << " | " << fmt(r.feltStiffness, 4)
        << " | " << pct(r.forceRms) << " | " << (hasOwn ? pct(it->second.forceRms) : "–") << " | " << fmt(r.directionRms)
        << " | " << (hasOwn ? fmt(it->second.directionRms) : "–") << " | " << pct(r.missed) << " | " << fmt(r.torqueRms)
-       << " | " << fmt(r.armRms) << " | " << pct(r.armRelRms) << " | " << fmt(r.drawnRms) << " | "
-       << fmt(r.drawnDegRms) << " | " << fmt(r.p99Us) << " |\n";
+       << " | " << fmt(r.armRms) << " | " << pct(r.armRelRms) << " | " << fmt(r.lineRms) << " | "
+       << fmt(r.drawnRms) << " | " << fmt(r.drawnDegRms) << " | " << fmt(r.p99Us) << " |\n";
   }
   md << "\nPer scene, defaults, h = 0.1 mm:\n\n| renderer | scene | poses | force RMS (%) | force p95 (%) | "
-        "direction RMS (°) | no force (%) | torque RMS | moment arm RMS (mm) | shaft arm RMS (%) | drawn (voxels) | "
-        "drawn (°) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "direction RMS (°) | no force (%) | torque RMS | moment arm RMS (mm) | shaft arm RMS (%) | line of action (mm) | "
+        "drawn (voxels) | drawn (°) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows)
     if (r.scene != "all" && std::abs(r.h - 1e-4) < 1e-9)
       md << "| " << r.renderer << " | " << r.scene << " | " << r.poses << " | " << pct(r.forceRms) << " | "
          << pct(r.forceP95) << " | " << fmt(r.directionRms) << " | " << pct(r.missed) << " | " << fmt(r.torqueRms)
-         << " | " << fmt(r.armRms) << " | " << pct(r.armRelRms) << " | " << fmt(r.drawnRms) << " | "
-         << fmt(r.drawnDegRms) << " |\n";
+         << " | " << fmt(r.armRms) << " | " << pct(r.armRelRms) << " | " << fmt(r.lineRms) << " | "
+         << fmt(r.drawnRms) << " | " << fmt(r.drawnDegRms) << " |\n";
   md << "\nConvergence order p in h (error ∝ h^p; drawn pose in mm):\n\n| renderer | force | direction | torque | "
         "shaft arm | drawn |\n|---|---|---|---|---|---|\n"
      << orders.str();

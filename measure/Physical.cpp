@@ -41,13 +41,13 @@ double angularStiffness(const HapticsRendererNode& n, double kFelt) {
 }
 
 struct Samples {
-  std::vector<double> force, direction, torque, arm, armRel, drawn, drawnDeg, us;
+  std::vector<double> force, direction, torque, arm, armRel, line, drawn, drawnDeg, us;
   int poses = 0, missed = 0, pressed = 0;
   double violation = 0.0;
   bool converged = true;
   void append(const Samples& o) {
     for (auto [a, b] : {std::pair{&force, &o.force}, {&direction, &o.direction}, {&torque, &o.torque},
-                        {&arm, &o.arm}, {&armRel, &o.armRel}, {&drawn, &o.drawn}, {&drawnDeg, &o.drawnDeg},
+                        {&arm, &o.arm}, {&armRel, &o.armRel}, {&line, &o.line}, {&drawn, &o.drawn}, {&drawnDeg, &o.drawnDeg},
                         {&us, &o.us}})
       a->insert(a->end(), b->begin(), b->end());
     poses += o.poses, missed += o.missed, pressed += o.pressed;
@@ -62,7 +62,7 @@ PhysicalRow summarise(const std::string& type, double h, const std::string& scen
   r.forceRms = rms(s.force), r.forceP95 = percentile(s.force, 0.95);
   r.directionRms = rms(s.direction), r.directionP95 = percentile(s.direction, 0.95);
   r.missed = s.pressed > 0 ? double(s.missed) / s.pressed : kNaN;
-  r.torqueRms = rms(s.torque), r.armRms = rms(s.arm), r.armRelRms = rms(s.armRel);
+  r.torqueRms = rms(s.torque), r.armRms = rms(s.arm), r.armRelRms = rms(s.armRel), r.lineRms = rms(s.line);
   r.drawnRms = rms(s.drawn), r.drawnDegRms = rms(s.drawnDeg), r.p99Us = percentile(s.us, 0.99);
   r.refViolation = s.violation, r.refConverged = s.converged;
   return r;
@@ -113,6 +113,11 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
         const double arm = glm::length(out.torque) / fo;
         s.arm.push_back((arm - ref.momentArm) * 1e3);
         if (ps.shaftContact) s.armRel.push_back((arm - ref.momentArm) / ref.momentArm);
+        if (ref.contacts.size() == 1) {
+          const glm::dvec3 axis = out.force / fo;
+          const glm::dvec3 onLine = out.drawnTool.position + glm::cross(out.force, out.torque) / (fo * fo);
+          s.line.push_back(glm::length(glm::cross(ref.contacts[0].point - onLine, axis)) * 1e3);
+        }
       }
       s.drawn.push_back(glm::length(out.drawnTool.position - ref.pose.position) / h);
       s.drawnDeg.push_back(glm::length(rotationVector(out.drawnTool.orientation * glm::inverse(ref.pose.orientation))) /
@@ -127,7 +132,7 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
 
 std::string physicalCsvHeader() {
   return "renderer,h_mm,scene,poses,felt_k,felt_kr,force_rms,force_p95,dir_rms_deg,dir_p95_deg,missed,torque_rms,"
-         "arm_rms_mm,arm_rel_rms,drawn_rms_vox,drawn_rms_deg,p99_us,ref_violation_m,ref_converged";
+         "arm_rms_mm,arm_rel_rms,line_rms_mm,drawn_rms_vox,drawn_rms_deg,p99_us,ref_violation_m,ref_converged";
 }
 
 std::string toCsv(const PhysicalRow& r) {
@@ -135,7 +140,7 @@ std::string toCsv(const PhysicalRow& r) {
   o.precision(4);
   o << r.renderer << "," << r.h * 1e3 << "," << r.scene << "," << r.poses << "," << r.feltStiffness << ","
     << r.angularStiffness << "," << r.forceRms << "," << r.forceP95 << "," << r.directionRms << ","
-    << r.directionP95 << "," << r.missed << "," << r.torqueRms << "," << r.armRms << "," << r.armRelRms << ","
+    << r.directionP95 << "," << r.missed << "," << r.torqueRms << "," << r.armRms << "," << r.armRelRms << "," << r.lineRms << ","
     << r.drawnRms << "," << r.drawnDegRms << "," << r.p99Us << "," << r.refViolation << ","
     << (r.refConverged ? 1 : 0);
   return o.str();

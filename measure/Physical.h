@@ -31,6 +31,9 @@ struct PhysicalRow {
   double torqueRms = 0;      // |T − T_ref| / (max(|F_ref|, F_floor)·max(arm_ref, tip radius))
   double armRms = 0;         // mm: | |T|/|F| − |T_ref|/|F_ref| |, both forces ≥ F_floor
   double armRelRms = 0;      // the same over arm_ref, shaft contacts only (NaN without)
+  // mm: distance from the reference's single contact point to the renderer's line of
+  // action (its torque taken about its drawn burr centre); single-contact poses, F ≥ F_floor.
+  double lineRms = 0;
   double drawnRms = 0;       // voxels: drawn burr centre against the constrained one
   double drawnDegRms = 0;    // degrees: drawn orientation against the constrained one
   double p99Us = 0;          // per-frame compute time over the held frames
