@@ -1,6 +1,8 @@
-// millsim bench accuracy | rates | zwidth: the measurements behind docs/results.md
+// millsim bench accuracy | physical | rates | zwidth: the measurements behind docs/results.md
+// and docs/accuracy.md
 // (scripts/bench runs them). Renderers are named by registry type and
 // configured by field name, so a new renderer type needs no change here.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -10,6 +12,7 @@
 
 #include "Commands.h"
 #include "measure/Accuracy.h"
+#include "measure/Physical.h"
 #include "measure/Rates.h"
 #include "measure/ZWidth.h"
 
@@ -104,6 +107,88 @@ int runAccuracy(const AccuracyArgs& a) {
   md << "\nConvergence order p (force and torque RMS; error ∝ h^p for the voxel size, ∝ n^−p for a resolution "
         "field):\n\n| renderer | swept | p (force) | p (torque) |\n|---|---|---|---|\n"
      << orders.str();
+  if (!a.md.empty()) openOut(a.md) << md.str();
+  else std::cout << md.str();
+  return kExitOk;
+}
+
+struct PhysicalArgs {
+  std::vector<std::string> renderers;
+  std::vector<double> voxelMm{0.2, 0.1, 0.05};
+  bool quick = false, ownLaw = true;
+  std::string csv, md;
+};
+
+// Each renderer at its defaults against the physical reference (measure/Physical.h),
+// with today's own-law figure (bench accuracy's "all" row) beside it.
+int runPhysical(const PhysicalArgs& a) {
+  PhysicalConfig cfg;
+  AccuracyConfig own;
+  if (a.quick) cfg.phases = 1, own.depths = 3, own.tiltsDeg = {0, 30, 60}, own.phases = 1, own.settleFrames = 10;
+  const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
+  std::vector<PhysicalRow> rows;
+  std::map<std::pair<std::string, double>, AccuracyRow> ownRows;
+  std::ostringstream orders;
+  auto pct = [](double v) { return fmt(100.0 * v, 3); };
+  for (const std::string& type : types) {
+    std::vector<double> hs, fe, de, te, ae, dr;
+    for (double mm : a.voxelMm) {
+      auto r = measurePhysical({type, {}}, mm * 1e-3, cfg);
+      const PhysicalRow& all = r.back();
+      std::cerr << type << " h=" << mm << "mm: force " << pct(all.forceRms) << " %, direction "
+                << fmt(all.directionRms) << " deg, torque " << fmt(all.torqueRms) << ", drawn " << fmt(all.drawnRms)
+                << " voxels" << (all.refConverged ? "" : " (a reference pose missed its tolerance)") << "\n";
+      hs.push_back(mm), fe.push_back(all.forceRms), de.push_back(all.directionRms), te.push_back(all.torqueRms);
+      ae.push_back(all.armRelRms), dr.push_back(all.drawnRms * mm);
+      rows.insert(rows.end(), r.begin(), r.end());
+      if (a.ownLaw) ownRows[{type, mm}] = measureAccuracy({type, {}}, mm * 1e-3, own).back();
+    }
+    orders << "| " << type << " | " << fmt(convergenceOrder(hs, fe), 2) << " | " << fmt(convergenceOrder(hs, de), 2)
+           << " | " << fmt(convergenceOrder(hs, te), 2) << " | " << fmt(convergenceOrder(hs, ae), 2) << " | "
+           << fmt(convergenceOrder(hs, dr), 2) << " |\n";
+  }
+  if (!a.csv.empty()) {
+    auto f = openOut(a.csv);
+    f << physicalCsvHeader() << ",own_force_rms,own_dir_rms_deg,own_torque_rms\n";
+    for (const auto& r : rows) {
+      f << toCsv(r);
+      const auto it = ownRows.find({r.renderer, r.h * 1e3});
+      if (r.scene == "all" && it != ownRows.end())
+        f << "," << it->second.forceRms << "," << it->second.directionRms << "," << it->second.torqueRms << "\n";
+      else f << ",,,\n";
+    }
+  }
+  double worstViolation = 0.0;
+  bool converged = true;
+  for (const auto& r : rows) worstViolation = std::max(worstViolation, r.refViolation), converged = converged && r.refConverged;
+  std::ostringstream md;
+  md << "| renderer | h (mm) | poses | felt k (N/m) | force RMS (%) | own law (%) | direction RMS (°) | own law (°) | "
+        "no force (%) | torque RMS | moment arm RMS (mm) | shaft arm RMS (%) | line of action (mm) | drawn (voxels) | "
+        "drawn (°) | p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    if (r.scene != "all") continue;
+    const auto it = ownRows.find({r.renderer, r.h * 1e3});
+    const bool hasOwn = it != ownRows.end();
+    md << "| " << r.renderer << " | " << fmt(r.h * 1e3) << " | " << r.poses << " | " << fmt(r.feltStiffness, 4)
+       << " | " << pct(r.forceRms) << " | " << (hasOwn ? pct(it->second.forceRms) : "–") << " | " << fmt(r.directionRms)
+       << " | " << (hasOwn ? fmt(it->second.directionRms) : "–") << " | " << pct(r.missed) << " | " << fmt(r.torqueRms)
+       << " | " << fmt(r.armRms) << " | " << pct(r.armRelRms) << " | " << fmt(r.lineRms) << " | "
+       << fmt(r.drawnRms) << " | " << fmt(r.drawnDegRms) << " | " << fmt(r.p99Us) << " |\n";
+  }
+  md << "\nPer scene, defaults, h = 0.1 mm:\n\n| renderer | scene | poses | force RMS (%) | force p95 (%) | "
+        "direction RMS (°) | no force (%) | torque RMS | moment arm RMS (mm) | shaft arm RMS (%) | line of action (mm) | "
+        "drawn (voxels) | drawn (°) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows)
+    if (r.scene != "all" && std::abs(r.h - 1e-4) < 1e-9)
+      md << "| " << r.renderer << " | " << r.scene << " | " << r.poses << " | " << pct(r.forceRms) << " | "
+         << pct(r.forceP95) << " | " << fmt(r.directionRms) << " | " << pct(r.missed) << " | " << fmt(r.torqueRms)
+         << " | " << fmt(r.armRms) << " | " << pct(r.armRelRms) << " | " << fmt(r.lineRms) << " | "
+         << fmt(r.drawnRms) << " | " << fmt(r.drawnDegRms) << " |\n";
+  md << "\nConvergence order p in h (error ∝ h^p; drawn pose in mm):\n\n| renderer | force | direction | torque | "
+        "shaft arm | drawn |\n|---|---|---|---|---|---|\n"
+     << orders.str();
+  md << "\nReference: " << (converged ? "every pose converged" : "SOME POSES MISSED THEIR TOLERANCE")
+     << ", largest remaining penetration " << fmt(worstViolation, 2) << " m.\n";
   if (!a.md.empty()) openOut(a.md) << md.str();
   else std::cout << md.str();
   return kExitOk;
@@ -226,6 +311,17 @@ void addBenchCommand(CLI::App& app, int& result) {
   acc->add_option("--csv", a->csv, "Write every row (per scene and 'all') as CSV");
   acc->add_option("--md", a->md, "Write the Markdown tables here (default: stdout)");
   onRun(acc, a, runAccuracy, result);
+
+  auto* phys = bench->add_subcommand(
+      "physical", "Force, torque and drawn-pose error against the rigid tool's constrained pose (docs/accuracy.md)");
+  auto ph = std::make_shared<PhysicalArgs>();
+  phys->add_option("--renderer", ph->renderers, "Renderer type (repeatable; default: every registered one)");
+  phys->add_option("--voxel-sizes", ph->voxelMm, "Voxel sizes h in mm (default 0.2,0.1,0.05)")->delimiter(',');
+  phys->add_flag("--quick", ph->quick, "One sub-voxel phase, and the quick own-law run");
+  phys->add_flag("!--no-own-law", ph->ownLaw, "Skip the own-law column (bench accuracy's figure)");
+  phys->add_option("--csv", ph->csv, "Write every row (per scene and 'all') as CSV");
+  phys->add_option("--md", ph->md, "Write the Markdown tables here (default: stdout)");
+  onRun(phys, ph, runPhysical, result);
 
   auto* rates = bench->add_subcommand("rates", "Frame time on the tooth phantom (the paper's §8.1 test)");
   auto r = std::make_shared<RatesArgs>();

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "measure/AnalyticScene.h"
+#include "measure/Statistics.h"
 
 namespace millsim::measure {
 
@@ -212,18 +213,6 @@ Shape sceneShape(const std::string& name, double h) {
   if (name == "edge") return edge({-2e-3, -2e-3, -1.5e-3}, {1e-3, 1e-3, 1.5e-3});
   if (name == "plate") return plate(2.0 * h, {-3e-3, -1.5e-3, -3e-3}, {3e-3, 1.5e-3, 3e-3});
   throw std::runtime_error("unknown accuracy scene '" + name + "' (half-space, sphere, cavity, edge, plate)");
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
-}
-double rms(const std::vector<double>& v) {
-  if (v.empty()) return kNaN;
-  double s = 0.0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s / double(v.size()));
 }
 
 struct Samples {

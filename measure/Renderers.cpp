@@ -85,7 +85,8 @@ double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& to
   return contactOffsetOn(renderer, tool, h, *probeSurface(h));
 }
 
-double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h) {
+double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h, double depth1,
+                         double depth2) {
   auto s = probeSurface(h);
   const double yc = contactOffsetOn(renderer, tool, h, *s);
   auto algorithm = renderer.compile(tool, *s->scene);
@@ -98,7 +99,7 @@ double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry
     for (int i = 0; i < 500; ++i) out = algorithm->step(*s->scene, {Pose{{0.0, y, 0.0}, {1, 0, 0, 0}}, 1e-3});
     return out.force.y;
   };
-  const double d1 = 0.2 * h, d2 = 0.6 * h;
+  const double d1 = depth1 > 0.0 ? depth1 : 0.2 * h, d2 = depth2 > 0.0 ? depth2 : 0.6 * h;
   const double f1 = forceAt(d1), f2 = forceAt(d2);
   return (f2 - f1) / (d2 - d1);
 }

@@ -44,7 +44,10 @@ double contactOffset(const HapticsRendererNode& renderer, const ToolGeometry& to
 // force difference between two quasi-static depths past first contact (0.2h
 // and 0.6h) over their distance, so an error in the contact height cancels.
 // #1: its proxy spring; #2: its springConstant shared among the touching
-// points; #3: the coupling in series with the contact.
-double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h);
+// points; #3: the coupling in series with the contact. `depth1`, `depth2` (m,
+// past first contact) replace 0.2h and 0.6h when positive: the physical suite
+// takes the slope at the same depths at every h.
+double renderedStiffness(const HapticsRendererNode& renderer, const ToolGeometry& tool, double h,
+                         double depth1 = 0.0, double depth2 = 0.0);
 
 }  // namespace millsim::measure

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes docs/results.md and docs/images/*.png from the files scripts/bench
-measured (accuracy.csv/.md, rates.csv, zwidth.csv/.md, procedure.csv/.md and
-procedure-*.txt, stability.txt)."""
+measured (accuracy.csv/.md, physical.md, rates.csv, zwidth.csv/.md, procedure.csv/.md and
+procedure-*.txt, stability.txt), and physical.md into docs/accuracy.md between its markers."""
 import argparse, csv, datetime, math, os, platform, re, subprocess
 import matplotlib
 matplotlib.use("Agg")
@@ -153,6 +153,14 @@ w("References, metrics and normalisation: [accuracy.md](accuracy.md). Every row 
 w(open(os.path.join(a.data, "accuracy.md")).read())
 w("\n![Pareto](images/pareto.png)\n\n![Convergence in h](images/convergence.png)\n")
 
+physical = optional_text("physical.md")
+if physical:
+    w("## Against the physical reference\n")
+    w("Each renderer at its defaults against the constrained pose of the rigid tool (the non-penetrating pose nearest "
+      "the device in the coupling metric), with the own-law figure above beside it; method, metrics and the per-scene "
+      "table: [accuracy.md](accuracy.md#physical-reference).\n")
+    w(physical.split("\n\nPer scene")[0] + "\n")
+
 w("## The paper's §8.1: frame time and equivalent rate\n")
 w("Our figure is the compute time of one renderer step on the tooth phantom (burr pressed 0.3 mm in, shaft leaning 15° "
   "and circling), without device I/O; the paper's is the whole haptic loop on a 3.3 GHz Pentium 4 (from its rates, "
@@ -283,3 +291,14 @@ w("- The lines above are generated from the tables by scripts/bench-report.py. O
   "**LineProxyRenderer** when the lowest burr-force error matters and shaft torque and a steady drawn shaft matter "
   "less; **SurfacePointRenderer** only for soft, slow contact, where its direct rendering gives the steadiest shaft.\n")
 open(os.path.join(a.docs, "results.md"), "w").write("\n".join(out) + "\n")
+
+# The physical suite's tables go into docs/accuracy.md, between its markers.
+if physical:
+    path = os.path.join(a.docs, "accuracy.md")
+    text = open(path).read()
+    begin, end = "<!-- physical:begin (scripts/bench writes this block) -->", "<!-- physical:end -->"
+    if begin in text and end in text:
+        text = text[:text.index(begin) + len(begin)] + "\n" + physical.strip() + "\n" + text[text.index(end):]
+        open(path, "w").write(text)
+    else:
+        print("bench-report: docs/accuracy.md has no physical markers; its tables were not updated")
