@@ -34,6 +34,7 @@ BurrState burrStateOf(const FrameRecord& r) {
   s.removedVolume = r.removedVolume;
   s.force = std::sqrt(r.force.x * r.force.x + r.force.y * r.force.y + r.force.z * r.force.z);
   s.contacts = r.out.contacts;
+  s.hardness = r.out.cutHardness;
   return s;
 }
 
@@ -62,7 +63,7 @@ void MillingSound::render(double untilTime, std::vector<std::int16_t>& out) {
   const std::int64_t target = std::llround(untilTime * p_.sampleRate);
   if (target <= written_) return;
   const double fs = p_.sampleRate;
-  const BurrMaterial& m = p_.material;
+  const BurrMaterial m{p_.material.hardness * tissue_, p_.material.brightness * tissue_};
   const double bandCentre = std::min(p_.noiseFrequency * m.brightness, fs / 8.0);
   const double svfF = 2.0 * std::sin(std::numbers::pi * bandCentre / fs);
   const double svfQ = 1.0 / kNoiseQ;
@@ -113,6 +114,7 @@ void MillingSound::addFrame(const BurrState& state, std::vector<std::int16_t>& o
   haveFrame_ = true;
   last_ = state;
   targetSpin_ = state.spinning ? 1.0 : 0.0;
+  tissue_ = std::isfinite(state.hardness) ? std::clamp(std::sqrt(std::max(state.hardness, 0.0)), 0.2, 3.0) : 1.0;
   double x = 0.0;
   if (p_.referenceRemovalRate > 0.0) x += removalRate_ / p_.referenceRemovalRate;
   if (state.contacts > 0 && p_.referenceForce > 0.0 && std::isfinite(state.force)) x += state.force / p_.referenceForce;

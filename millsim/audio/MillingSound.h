@@ -26,11 +26,13 @@ struct BurrState {
   double removedVolume = 0.0;  // m³ milled so far (cumulative)
   double force = 0.0;          // N, |force| sent to the device
   int contacts = 0;
+  double hardness = 1.0;       // of the tissue the burr cuts (HapticOutput::cutHardness)
 };
 BurrState burrStateOf(const FrameRecord& record);
 
-// How the burr's material sounds. One material for now: the hook where tissues
-// (enamel, dentin, bone …) will set a timbre per frame when the lessons add them.
+// How the burr's material sounds; each frame's tissue (BurrState::hardness)
+// scales both by √hardness, so enamel grinds louder, brighter and slows the
+// motor more than dentin, and the pulp is nearly silent.
 struct BurrMaterial {
   double hardness = 1.0;    // scales the grinding noise and how much the motor slows under load
   double brightness = 1.0;  // scales the centre frequency of the grinding noise
@@ -81,6 +83,7 @@ private:
   BurrState last_;
   double removalRate_ = 0.0;  // m³/s, smoothed per frame
   double targetSpin_ = 0.0, targetLoad_ = 0.0;
+  double tissue_ = 1.0;  // √ of the cut tissue's hardness, clamped to [0.2, 3]
   // Per-sample state.
   double spin_ = 0.0, load_ = 0.0;
   double phase_ = 0.0, wobblePhase_ = 0.0;

@@ -54,7 +54,7 @@ SceneDrawer::SceneDrawer(SceneView scene) : scene_(std::move(scene)), view_(scen
   unitBox(v, idx);
   box_->upload(v, idx);
   for (const DrawVolume& dv : scene_.volumes) {
-    meshes_.push_back(std::make_unique<VolumeMesh>(*dv.voxels, float(dv.iso)));
+    meshes_.push_back(std::make_unique<VolumeMesh>(*dv.voxels, float(dv.iso), dv.tissues));
     meshes_.back()->build();
   }
 }

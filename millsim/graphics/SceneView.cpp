@@ -167,7 +167,8 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
   // Volumes from the list the haptic scene is built from: the same order by construction.
   for (const PlacedVolume& p : placedVolumes(scene)) {
     sv.volumes.push_back(
-        {p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.clipPlanes, cutsOf(sv, p.clipPlanes)});
+        {p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.clipPlanes, cutsOf(sv, p.clipPlanes),
+         p.node->tissueMap()});
     grow(sv, haveBounds, p.localToWorld, p.node->volume()->halfSize());
   }
   if (!haveView && haveBounds) {

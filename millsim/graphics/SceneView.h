@@ -15,6 +15,8 @@
 
 namespace millsim {
 
+class TissueMap;
+
 class Node;
 class Scene;
 class VoxelVolume;
@@ -68,6 +70,7 @@ struct DrawVolume {
   double iso;
   ClipPlanes clipPlanes;
   std::vector<int> cuts;
+  const TissueMap* tissues = nullptr;  // colours the surface by tissue when the volume has them
 };
 
 // A Viewpoint to cycle through (Page Up / Page Down in the window).

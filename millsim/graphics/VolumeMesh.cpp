@@ -4,6 +4,7 @@
 
 #include <glm/common.hpp>
 
+#include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VolumeSampler.h"
 
 namespace millsim {
@@ -16,7 +17,8 @@ glm::vec3 densityColour(float d, float iso) {
   return glm::mix(soft, dentin, std::clamp((d - lo) / (kDentin - lo), 0.f, 1.f));
 }
 
-VolumeMesh::VolumeMesh(const VoxelVolume& voxels, float isoValue) : voxels_(voxels), mesher_(voxels, isoValue) {}
+VolumeMesh::VolumeMesh(const VoxelVolume& voxels, float isoValue, const TissueMap* tissues)
+    : voxels_(voxels), tissues_(tissues), mesher_(voxels, isoValue) {}
 
 void VolumeMesh::build() {
   mesher_.buildAll();
@@ -37,6 +39,17 @@ void VolumeMesh::draw() const {
   for (const auto& [key, mesh] : gpu_) mesh.draw();
 }
 
+glm::vec3 VolumeMesh::colourAt(const VolumeSampler& sampler, const glm::dvec3& index, float iso) const {
+  // A tissue's colour where the volume has tissues (the labels never change,
+  // so the cut surface shows what it was cut into); else by density.
+  if (tissues_) {
+    const glm::ivec3 v(glm::round(index));
+    if (const int label = tissues_->labelAt(v.x, v.y, v.z); label > 0)
+      return tissues_->entries()[std::size_t(label)].colour;
+  }
+  return densityColour(sampler.density(index), iso);
+}
+
 void VolumeMesh::upload(const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk) {
   // The tissue is read two voxels below the surface: on the surface itself
   // every sample equals the iso-value.
@@ -46,7 +59,7 @@ void VolumeMesh::upload(const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& 
   scratch_.resize(chunk.positions.size());
   for (std::size_t i = 0; i < chunk.positions.size(); ++i) {
     const glm::dvec3 inside = glm::dvec3(chunk.positions[i]) - depth * glm::dvec3(chunk.normals[i]);
-    scratch_[i] = {chunk.positions[i], chunk.normals[i], densityColour(sampler.density(voxels_.localToIndex(inside)), iso)};
+    scratch_[i] = {chunk.positions[i], chunk.normals[i], colourAt(sampler, voxels_.localToIndex(inside), iso)};
   }
   gpu_[key].upload(scratch_, chunk.indices);
   ++uploads_;

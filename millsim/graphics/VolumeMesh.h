@@ -2,8 +2,9 @@
 // VolumeMesh: the iso-surface of one voxel volume on the GPU. Meshes with
 // IsoSurfaceMesher (16³-cell chunks) and keeps one GlMesh per chunk, so that
 // after milling only the chunks the changed blocks touch are re-extracted and
-// re-uploaded. Vertex colours come from the density just inside the surface,
-// so enamel, dentin and whatever a cut exposes look different. Internal to
+// re-uploaded. Vertex colours come from the tissue just inside the surface
+// (its Tissue colour), or without tissues from the density there, so enamel,
+// dentin and whatever a cut exposes look different. Internal to
 // the graphics library; every call needs the renderer's GL context current.
 #include <map>
 #include <vector>
@@ -12,6 +13,9 @@
 #include "millsim/volume/IsoSurface.h"
 
 namespace millsim {
+
+class TissueMap;
+class VolumeSampler;
 
 // The colour of tissue of a given density (Hounsfield-like units): dentin
 // (~1600) ivory-yellow, enamel (~2800) bluish white, softer tissue towards
@@ -22,7 +26,8 @@ class VolumeMesh {
 public:
   // Keeps a reference to `voxels`, which must outlive this and must not be
   // written while build() or update() run.
-  VolumeMesh(const VoxelVolume& voxels, float isoValue);
+  // `tissues` (optional, never written) colours the surface by tissue.
+  VolumeMesh(const VoxelVolume& voxels, float isoValue, const TissueMap* tissues = nullptr);
 
   void build();                                             // everything afresh
   void update(const std::vector<BlockOrigin>& blocks);   // after these 8³ blocks changed
@@ -34,8 +39,10 @@ public:
 
 private:
   void upload(const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk);
+  glm::vec3 colourAt(const VolumeSampler& sampler, const glm::dvec3& index, float isoValue) const;
 
   const VoxelVolume& voxels_;
+  const TissueMap* tissues_;
   IsoSurfaceMesher mesher_;
   std::map<IsoSurfaceMesher::ChunkKey, GlMesh, IsoSurfaceMesher::KeyLess> gpu_;
   std::vector<Vertex> scratch_;

@@ -10,6 +10,7 @@ namespace millsim {
 
 const glm::dvec3& CutFront::step(const HapticScene& scene, const FeedLaw& law, const glm::dvec3& burr,
                                  const glm::dvec3& target, bool touching, bool milling, double force, double dt) {
+  hardness_ = 1.0;
   if (!touching) {
     centre_ = burr;
     return centre_;
@@ -21,6 +22,7 @@ const glm::dvec3& CutFront::step(const HapticScene& scene, const FeedLaw& law, c
   const glm::dvec3 dir = toTarget / gap;
   // The tissue just ahead of the burr's leading point is what gives way.
   const double hardness = scene.hardness(centre_ + dir * (law.tipRadius + 0.5 * scene.voxelSize()));
+  hardness_ = hardness;
   if (!(hardness > 0.0)) return centre_;
   const double feed = force / (law.feedResistance * hardness) * dt;
   centre_ += dir * std::min(feed, gap);

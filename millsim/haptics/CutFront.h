@@ -23,6 +23,8 @@ class CutFront {
 public:
   void reset(const glm::dvec3& at) { centre_ = at; }
   const glm::dvec3& centre() const { return centre_; }
+  // The hardness the last step met (1 when it did not cut).
+  double hardness() const { return hardness_; }
 
   // One frame: `burr` is where the burr is (drawn), `target` where the hand
   // wants it; `force` the magnitude felt (N).
@@ -31,6 +33,7 @@ public:
 
 private:
   glm::dvec3 centre_{0.0};
+  double hardness_ = 1.0;
 };
 
 }  // namespace millsim

@@ -41,6 +41,9 @@ struct HapticOutput {
   // Renderers set this to the burr they draw (see docs/algorithms.md, Milling position).
   bool burrCuts = true;
   glm::dvec3 burrCentre{0.0};
+  // The hardness of the tissue at the burr's leading point while it cuts (1
+  // otherwise): what the feed was divided by, and what the sound grinds.
+  double cutHardness = 1.0;
 };
 
 // Events worth logging, as bits of HapticOutput::flags.

@@ -96,6 +96,7 @@ public:
     // whatever the force or tissue (docs/algorithms.md, "Tissue hardness").
     out.burrCentre = cut_.step(scene, FeedLaw{p_.feedResistance, reachTip_}, tool_.position, device.position,
                                out.contacts > 0, in.milling, glm::length(out.force), dt);
+    out.cutHardness = cut_.hardness();
     out.burrCuts = true;
     lastDevice_ = device;
     toolVelocity_ = toolVelocity;

@@ -156,6 +156,7 @@ public:
       const double hardness =
           scene.hardness(drawTip - n * (previous + p_.tool.tipRadius + 0.5 * scene.voxelSize()));
       const double feed = hardness > 0.0 ? glm::length(out.force) / (p_.feedResistance * hardness) * in.dt : 0.0;
+      out.cutHardness = hardness;
       const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
       out.burrCentre = drawTip - n * depth;
       cutCentre_ = out.burrCentre;

@@ -118,6 +118,7 @@ public:
     if (touching && !(push > 0.0) && scene.inside(c)) push = 0.5 * k_ * glm::length(c - cut_.centre());
     cut_.step(scene, feed_, c, c, touching, in.milling, push, in.dt);
     out.burrCentre = cut_.centre();
+    out.cutHardness = cut_.hardness();
     sanitize(out, device);
     lastDrawn_ = out.drawnTool;
     return out;

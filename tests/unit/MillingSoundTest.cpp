@@ -356,3 +356,18 @@ TEST(SoundTrack, WritesWhatItSynthesizesAsLongAsTheRun) {
   }
   EXPECT_EQ(bytesOf(path).size(), 44u + 2u * 4u * kFs);
 }
+
+// Issue 18: the sound changes with the tissue the burr cuts — the same cut in
+// enamel (hardness 5) grinds louder than in dentin (1), in the pulp (0.05)
+// hardly at all.
+TEST(MillingSound, HarderTissueGrindsLouder) {
+  const Script s;
+  auto in = [&](double hardness) {
+    std::vector<BurrState> f = frames(s);
+    for (BurrState& b : f) b.hardness = hardness;
+    return rms(synthesize(f), 1.7, 2.5);
+  };
+  const double pulp = in(0.05), dentin = in(1.0), enamel = in(5.0);
+  EXPECT_GT(enamel, 1.3 * dentin);
+  EXPECT_GT(dentin, 1.3 * pulp);
+}
