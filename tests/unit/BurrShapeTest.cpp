@@ -1,6 +1,7 @@
 // Burr shapes (issue 18 part 2): each head removes the volume its geometry
-// implies for a straight plunge, the round head stamps exactly as before, and
-// MillTool refuses an unknown shape.
+// implies for a straight plunge, the round head stamps exactly as before,
+// BarbicRenderer's force on a flat-ended cylinder pressed on a slab points
+// along the slab's normal, and LineProxyRenderer refuses a non-round head.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +15,10 @@
 
 #include "millsim/core/Diagnostics.h"
 #include "millsim/haptics/MillTool.h"
+#include "millsim/renderers/BarbicRenderer.h"
+#include "millsim/renderers/LineProxyRenderer.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/VoxelScene.h"
 #include "AnalyticScenes.h"
@@ -120,6 +125,110 @@ TEST(BurrShape, RoundHeadStampsBitIdenticallyToTheSphereStamp) {
   EXPECT_EQ(ra.voxelsChanged, 220);
   EXPECT_EQ(rb.removedVolume, ra.removedVolume);
   EXPECT_EQ(rb.voxelsChanged, ra.voxelsChanged);
+}
+
+TEST(BurrShape, ToolSdfGradientAndHessianOfEachHeadMatchFiniteDifferences) {
+  // #3's stiffness needs the head's gradient and Hessian: at points by the
+  // cutting end's face, the side, outside the rim, and inside, against
+  // central differences of the distance (and of the gradient).
+  const double eps = 1e-7;
+  for (BurrShape shape : {BurrShape::Cylinder, BurrShape::Taper, BurrShape::InvertedCone}) {
+    ToolGeometry tool{0.6e-3, 0.25e-3, 3.0e-3};
+    tool.shape = shape;
+    tool.tipLength = 1.5e-3;
+    tool.tipEndRadius = 0.3e-3;
+    const ToolSdf sdf(tool, 0.05e-3);
+    const glm::dvec3 points[] = {{0.1e-3, -1.0e-3, 0.05e-3},  {0.9e-3, -0.2e-3, 0.3e-3},   {0.8e-3, -1.1e-3, -0.2e-3},
+                                 {0.15e-3, -0.5e-3, 0.1e-3}, {-0.2e-3, 0.1e-3, 0.15e-3}, {0.6e-3, 1.0e-3, 0.4e-3}};
+    for (const glm::dvec3& q : points) {
+      const SdfSample s = sdf.analytic(q, true);
+      EXPECT_NEAR(s.distance, sdf.distance(q), 1e-15);
+      for (int a = 0; a < 3; ++a) {
+        glm::dvec3 e(0.0);
+        e[a] = eps;
+        const double fd = (sdf.distance(q + e) - sdf.distance(q - e)) / (2 * eps);
+        EXPECT_NEAR(s.gradient[a], fd, 1e-5) << burrShapeName(shape) << " at (" << q.x << " " << q.y << " " << q.z
+                                             << ") axis " << a;
+        const glm::dvec3 dg = (sdf.analytic(q + e, false).gradient - sdf.analytic(q - e, false).gradient) / (2 * eps);
+        for (int b = 0; b < 3; ++b)
+          // In 1/m: the entries reach 1e4/m (1/ρ and 1/d at 0.1 mm), so 1e-4 relative.
+          EXPECT_NEAR(s.hessian[a][b], dg[b], 1.0) << burrShapeName(shape) << " Hessian " << a << b;
+      }
+    }
+  }
+}
+
+TEST(BurrShape, BarbicForceOnAFlatCylinderPointsAlongTheSlabNormal) {
+  ToolGeometry tool{0.5e-3, 0.25e-3, 3.0e-3};
+  tool.shape = BurrShape::Cylinder;
+  tool.tipLength = 1.0e-3;
+  // The slab's normal up, and tilted 20° (the tool's shaft along it, so the
+  // flat end lies on the surface).
+  for (double tilt : {0.0, 0.35}) {
+    const glm::dquat q = glm::angleAxis(tilt, glm::dvec3(0, 0, -1));  // +Y towards +X
+    const glm::dvec3 n = q * glm::dvec3(0, 1, 0);
+    VoxelVolume volume = analytic(64, [&](const glm::dvec3& p) { return glm::dot(p, n); });
+    VoxelScene scene;
+    scene.addVolume(volume, glm::dmat4(1.0), kIso);
+    BarbicRenderer renderer;
+    auto algorithm = renderer.compile(tool, scene);
+    // The device 0.3 mm past where the flat end would touch the surface.
+    const Pose device{n * (0.5 * tool.tipLength - 0.3e-3), q};
+    const Pose from{n * (0.5 * tool.tipLength + 1.0e-3), q};
+    algorithm->reset(from);
+    HapticOutput out;
+    for (int i = 1; i <= 40; ++i) {
+      const double u = double(i) / 40;
+      out = algorithm->step(scene, HapticInput{Pose{from.position + (device.position - from.position) * u, q}, 1e-3});
+    }
+    for (int i = 0; i < 300; ++i) out = algorithm->step(scene, HapticInput{device, 1e-3});
+    ASSERT_GT(glm::length(out.force), 0.0);
+    const double angle = std::acos(std::clamp(glm::dot(glm::normalize(out.force), n), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    std::printf("Barbic, flat cylinder on a slab of normal (%.2f %.2f %.2f): |F| = %.4f N, %.3f deg off the normal, "
+                "%d contacts, |T| = %.2e N m\n",
+                n.x, n.y, n.z, glm::length(out.force), angle, out.contacts, glm::length(out.torque));
+    EXPECT_LT(angle, 3.0);
+    EXPECT_GT(out.contacts, 0);
+  }
+}
+
+TEST(BurrShape, SurfacePointForceOnAFlatCylinderPointsAlongTheNormal) {
+  ToolGeometry tool{0.5e-3, 0.25e-3, 3.0e-3};
+  tool.shape = BurrShape::Cylinder;
+  tool.tipLength = 1.0e-3;
+  VoxelVolume volume = slab();
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), kIso);
+  SurfacePointRenderer renderer;
+  auto algorithm = renderer.compile(tool, scene);
+  const Pose device = vertical({0, 0.5 * tool.tipLength - 0.2e-3, 0});
+  algorithm->reset(vertical({0, 2e-3, 0}));
+  const HapticOutput out = algorithm->step(scene, HapticInput{device, 1e-3});
+  ASSERT_GT(out.force.y, 0.0);
+  const double angle = std::acos(std::clamp(glm::normalize(out.force).y, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  std::printf("SurfacePointRenderer, flat cylinder 0.2 mm into a slab: F = %.4f N, %.3f deg off the normal\n",
+              glm::length(out.force), angle);
+  EXPECT_LT(angle, 3.0);
+}
+
+TEST(BurrShape, LineProxyRefusesANonRoundHeadNamingIt) {
+  VoxelVolume volume = slab();
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), kIso);
+  LineProxyRenderer renderer;
+  EXPECT_NO_THROW(renderer.compile(kTool, scene));
+  for (BurrShape shape : {BurrShape::Cylinder, BurrShape::Taper, BurrShape::InvertedCone}) {
+    ToolGeometry tool = kTool;
+    tool.shape = shape;
+    try {
+      renderer.compile(tool, scene);
+      ADD_FAILURE() << "LineProxyRenderer compiled a " << burrShapeName(shape) << " burr";
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("LineProxyRenderer ", 0), 0u) << what;  // it names itself first
+      EXPECT_NE(what.find("\"" + std::string(burrShapeName(shape)) + "\""), std::string::npos) << what;
+    }
+  }
 }
 
 TEST(BurrShape, MillToolRefusesAnUnknownShapeListingTheValidOnes) {
