@@ -93,13 +93,20 @@ void unitSphere(std::vector<Vertex>& v, std::vector<std::uint32_t>& idx, int sli
 }
 
 void unitCylinder(std::vector<Vertex>& v, std::vector<std::uint32_t>& idx, int slices) {
+  unitFrustum(v, idx, 1.f, 1.f, slices);
+}
+
+void unitFrustum(std::vector<Vertex>& v, std::vector<std::uint32_t>& idx, float bottom, float top, int slices) {
   v.clear();
   idx.clear();
+  // The side's outward normal in (radial, y): (1, bottom − top), normalised (height 1).
+  const float slope = bottom - top, norm = std::sqrt(1.f + slope * slope);
   for (int i = 0; i <= slices; ++i) {  // side: pairs of bottom, top
     const double theta = kTau * double(i) / slices;
-    const glm::vec3 n(float(std::sin(theta)), 0.f, float(std::cos(theta)));
-    v.push_back({n + glm::vec3(0.f, -0.5f, 0.f), n, kWhite});
-    v.push_back({n + glm::vec3(0.f, 0.5f, 0.f), n, kWhite});
+    const glm::vec3 radial(float(std::sin(theta)), 0.f, float(std::cos(theta)));
+    const glm::vec3 n = (radial + glm::vec3(0.f, slope, 0.f)) / norm;
+    v.push_back({radial * bottom + glm::vec3(0.f, -0.5f, 0.f), n, kWhite});
+    v.push_back({radial * top + glm::vec3(0.f, 0.5f, 0.f), n, kWhite});
   }
   for (int i = 0; i < slices; ++i) {
     const auto a = std::uint32_t(2 * i);
@@ -111,7 +118,8 @@ void unitCylinder(std::vector<Vertex>& v, std::vector<std::uint32_t>& idx, int s
     v.push_back({glm::vec3(0.f, y, 0.f), n, kWhite});
     for (int i = 0; i <= slices; ++i) {
       const double theta = kTau * double(i) / slices;
-      v.push_back({glm::vec3(float(std::sin(theta)), y, float(std::cos(theta))), n, kWhite});
+      const float r = y > 0.f ? top : bottom;
+      v.push_back({glm::vec3(float(std::sin(theta)) * r, y, float(std::cos(theta)) * r), n, kWhite});
     }
     for (int i = 0; i < slices; ++i) {
       const auto a = centre + 1 + std::uint32_t(i);

@@ -42,6 +42,8 @@ private:
 // per draw, so the vertices carry white.
 void unitSphere(std::vector<Vertex>& v, std::vector<std::uint32_t>& i, int slices = 48, int stacks = 24);
 void unitCylinder(std::vector<Vertex>& v, std::vector<std::uint32_t>& i, int slices = 48);
+// The same height-1 solid along Y with radius `bottom` at y = −½ and `top` at y = +½.
+void unitFrustum(std::vector<Vertex>& v, std::vector<std::uint32_t>& i, float bottom, float top, int slices = 48);
 void unitBox(std::vector<Vertex>& v, std::vector<std::uint32_t>& i);
 
 }  // namespace millsim

@@ -179,7 +179,7 @@ void SceneDrawer::aim(int width, int height, const std::vector<ToolView>& tools)
   glm::dvec3 lo = scene_.boundsMin, hi = scene_.boundsMax;
   bool any = !scene_.volumes.empty() || !scene_.shapes.empty();
   for (const ToolView& t : tools) {
-    const double reach = t.geometry.shaftLength + t.geometry.tipRadius;
+    const double reach = t.geometry.shaftLength + t.geometry.head().boundingRadius();
     const glm::dvec3 a = t.pose.position - reach, b = t.pose.position + reach;
     lo = any ? glm::min(lo, a) : a;
     hi = any ? glm::max(hi, b) : b;
@@ -209,9 +209,25 @@ void SceneDrawer::drawTool(const ToolView& t) {
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glDisable(GL_DEPTH_TEST);
   }
-  program_->setObject(glm::scale(pose, glm::dvec3(t.geometry.tipRadius)), t.ghost ? kGhost : kBurr,
-                      t.ghost ? &kGhost.diffuse : &kBurr.diffuse, false, none);
-  sphere_->draw();
+  if (t.geometry.round()) {
+    program_->setObject(glm::scale(pose, glm::dvec3(t.geometry.tipRadius)), t.ghost ? kGhost : kBurr,
+                        t.ghost ? &kGhost.diffuse : &kBurr.diffuse, false, none);
+    sphere_->draw();
+  } else {
+    const BurrHead head = t.geometry.head();
+    const glm::vec2 radii(float(head.cuttingEndRadius() / head.radius), float(head.shankEndRadius() / head.radius));
+    if (!head_ || radii != headRadii_) {
+      std::vector<Vertex> v;
+      std::vector<std::uint32_t> idx;
+      unitFrustum(v, idx, radii.x, radii.y);
+      if (!head_) head_ = std::make_unique<GlMesh>(false);
+      head_->upload(v, idx);
+      headRadii_ = radii;
+    }
+    program_->setObject(glm::scale(pose, glm::dvec3(head.radius, head.length, head.radius)), t.ghost ? kGhost : kBurr,
+                        t.ghost ? &kGhost.diffuse : &kBurr.diffuse, false, none);
+    head_->draw();
+  }
   const glm::dmat4 shaft = glm::scale(glm::translate(pose, glm::dvec3(0.0, t.geometry.shaftLength / 2, 0.0)),
                                       glm::dvec3(t.geometry.shaftRadius, t.geometry.shaftLength,
                                                  t.geometry.shaftRadius));

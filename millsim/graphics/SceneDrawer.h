@@ -16,6 +16,8 @@
 #include <optional>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "millsim/graphics/Image.h"
 #include "millsim/graphics/SceneView.h"
 #include "millsim/haptics/MillTool.h"
@@ -29,7 +31,8 @@ class ShadedProgram;
 class VolumeMesh;
 class VoxelVolume;
 
-// What to draw of the tool: burr sphere at pose.position, shaft along the
+// What to draw of the tool: burr head (a sphere, or the shape's head centred
+// on pose.position: millsim/haptics/BurrHead.h) at pose.position, shaft along the
 // pose's +Y, and the red intersection marker if there is one (drawn over
 // everything, since it lies where the shaft enters the tooth).
 struct ToolView {
@@ -99,6 +102,10 @@ private:
   Camera camera_;
   std::unique_ptr<ShadedProgram> program_;
   std::unique_ptr<GlMesh> sphere_, cylinder_, box_;
+  // A non-round burr head as a unit frustum (radii relative to tipRadius),
+  // uploaded again only when the head's proportions change.
+  std::unique_ptr<GlMesh> head_;
+  glm::vec2 headRadii_{-1.f};
   std::vector<std::unique_ptr<VolumeMesh>> meshes_;
 };
 

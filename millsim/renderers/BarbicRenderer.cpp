@@ -32,7 +32,8 @@ struct BarbicParams {
 class BarbicAlgorithm final : public HapticAlgorithm {
 public:
   BarbicAlgorithm(const BarbicParams& p, const ToolGeometry& tool, double sdfVoxel, HapticScene& scene)
-      : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.tipRadius)), reachTip_(tool.tipRadius) {
+      : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.head().boundingRadius())),
+        reachTip_(tool.head().boundingRadius()) {
     // The scene builds the shells on first request: here, on the scene thread, not in step().
     shells_.resize(scene.volumeCount());
     followMilling(scene);

@@ -1,6 +1,7 @@
 #include "millsim/renderers/LineProxyRenderer.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -259,6 +260,13 @@ const NodeType& LineProxyRenderer::type() {
 }
 
 std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
+  // The burr is a sphere about the tip vertex (its proxy keeps the tip
+  // tipRadius off the surface, eq. 3-4): no other head can be represented.
+  if (!tool.round())
+    throw std::runtime_error("LineProxyRenderer cannot represent the MillTool shape \"" +
+                             std::string(burrShapeName(tool.shape)) +
+                             "\": it models the burr as a sphere about its tip vertex; use shape \"round\", "
+                             "or SurfacePointRenderer or BarbicRenderer");
   return std::make_unique<LineProxyAlgorithm>(
       LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
                                  double(springConstant.get()), double(feedResistance.get()), tool},

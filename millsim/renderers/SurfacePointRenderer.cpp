@@ -23,13 +23,19 @@ public:
       : k_(k), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice), heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
     // Sphere: a Fibonacci lattice spreads any number of points evenly.
     const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < sphereVertices; ++i) {
-      const double y = 1.0 - 2.0 * (i + 0.5) / sphereVertices;
-      const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
-      sphere_.push_back(tool.tipRadius * glm::dvec3(r * std::cos(golden * i), y, r * std::sin(golden * i)));
+    if (tool.round()) {
+      for (int i = 0; i < sphereVertices; ++i) {
+        const double y = 1.0 - 2.0 * (i + 0.5) / sphereVertices;
+        const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
+        sphere_.push_back(tool.tipRadius * glm::dvec3(r * std::cos(golden * i), y, r * std::sin(golden * i)));
+      }
+    } else {
+      headPoints(tool.head(), sphereVertices, golden);
     }
-    // Slices cover the part of the shaft outside the burr sphere, evenly.
-    const double y0 = std::sqrt(std::max(0.0, tool.tipRadius * tool.tipRadius - tool.shaftRadius * tool.shaftRadius));
+    // Slices cover the part of the shaft outside the burr head, evenly.
+    const double y0 =
+        tool.round() ? std::sqrt(std::max(0.0, tool.tipRadius * tool.tipRadius - tool.shaftRadius * tool.shaftRadius))
+                     : std::min(0.5 * tool.tipLength, tool.shaftLength);
     for (int j = 0; j < slices; ++j) sliceY_.push_back(y0 + (tool.shaftLength - y0) * (j + 0.5) / slices);
     for (int v = 0; v < perSlice; ++v) {
       const double a = 2.0 * std::numbers::pi * v / perSlice;
@@ -78,7 +84,14 @@ public:
       for (const glm::dvec3& offset : sphere_) {
         const glm::dvec3 v = c + R * offset;
         if (!scene.inside(v)) continue;
-        f += penetration(scene, v, c, h);
+        if (roundHead_) {
+          f += penetration(scene, v, c, h);
+        } else {
+          const glm::dvec3 a = penetration(scene, v, c + R * target_[std::size_t(&offset - sphere_.data())], h);
+          f += a;
+          // A non-round head is not symmetric about its centre: its points turn it too.
+          out.torque += glm::cross(v - c, a) * (k_ / double(sphere_.size()));
+        }
         ++out.contacts;
       }
       out.force = k_ * f / double(sphere_.size());  // eq. 14, summed (eq. 16)
@@ -125,6 +138,50 @@ public:
   }
 
 private:
+  // A non-round head: `count` points over its surface (cutting-end disc, side,
+  // shank-end disc), shared by area; each disc a sunflower spiral, the side
+  // rings of evenly spaced points (so a ring wholly in material pushes no net
+  // sideways), so each point stands for about the same area. Each point's
+  // penetration (eq. 14) is measured towards its own target inside the head
+  // rather than the centre: a disc point straight along the axis to the head's
+  // middle plane, a side point straight to the axis — along the face normal
+  // (the side's up to its slope), so a flat face pressed on a flat surface
+  // pushes along that surface's normal.
+  void headPoints(const BurrHead& b, int count, double golden) {
+    roundHead_ = false;
+    const double h = 0.5 * b.length, r0 = b.cuttingEndRadius(), r1 = b.shankEndRadius();
+    const double a0 = std::numbers::pi * r0 * r0, a1 = std::numbers::pi * r1 * r1;
+    const double slant = std::hypot(r1 - r0, b.length);
+    const double side = std::numbers::pi * (r0 + r1) * slant;
+    const double total = a0 + a1 + side;
+    const int n0 = r0 > 0.0 ? std::max(1, int(std::lround(count * a0 / total))) : 0;
+    const int n1 = r1 > 0.0 ? std::max(1, int(std::lround(count * a1 / total))) : 0;
+    const int ns = std::max(3, count - n0 - n1);
+    auto disc = [&](int n, double r, double y) {
+      for (int i = 0; i < n; ++i) {
+        const double rr = r * std::sqrt((i + 0.5) / n);
+        sphere_.push_back({rr * std::cos(golden * i), y, rr * std::sin(golden * i)});
+        target_.push_back({sphere_.back().x, 0.0, sphere_.back().z});
+      }
+    };
+    disc(n0, r0, -h);
+    const int rings = std::max(1, int(std::lround(std::sqrt(ns * slant / (std::numbers::pi * (r0 + r1))))));
+    const int perRing = std::max(3, ns / rings);
+    const double dr = r1 - r0;
+    for (int j = 0; j < rings; ++j) {
+      // Uniform in area along the slant: the area up to t grows as r0 t + (r1 − r0) t²/2.
+      const double u = (j + 0.5) / rings;
+      const double t = std::abs(dr) < 1e-15 ? u : (-r0 + std::sqrt(r0 * r0 + 2.0 * dr * u * (r0 + 0.5 * dr))) / dr;
+      const double r = r0 + dr * t, y = -h + b.length * t;
+      for (int i = 0; i < perRing; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / perRing + golden * j;
+        sphere_.push_back({r * std::cos(a), y, r * std::sin(a)});
+        target_.push_back({0.0, y, 0.0});
+      }
+    }
+    disc(n1, r1, h);
+  }
+
   // a_i of eq. 14: from a colliding vertex to where the segment towards the
   // centre leaves the material, found by half-voxel steps and the density
   // fraction of eq. 1 between the last two samples (the paper's eq. 15).
@@ -152,7 +209,9 @@ private:
   FeedLaw feed_;
   CutFront cut_;  // where the burr cuts
   int perSlice_;
-  std::vector<glm::dvec3> sphere_, ring_;
+  std::vector<glm::dvec3> sphere_, ring_;  // sphere_: the head's points (a sphere for the round burr)
+  std::vector<glm::dvec3> target_;  // a non-round head's points: where each one's penetration is measured towards
+  bool roundHead_ = true;
   std::vector<double> sliceY_;
   glm::dvec3 heldSphere_{0.0};
   Pose lastDrawn_;

@@ -46,16 +46,44 @@ ToolSdf::ToolSdf(const ToolGeometry& tool, double gridVoxelSize)
 double ToolSdf::distance(const glm::dvec3& q) const {
   double rho;
   glm::dvec2 e;
-  return std::min(glm::length(q) - tool_.tipRadius, cylinder(q, tool_.shaftRadius, tool_.shaftLength, rho, e));
+  return std::min(headDistance(q), cylinder(q, tool_.shaftRadius, tool_.shaftLength, rho, e));
+}
+
+double ToolSdf::headDistance(const glm::dvec3& q) const {
+  if (tool_.round()) return glm::length(q) - tool_.tipRadius;
+  return headProfileDistance(tool_.head(), std::hypot(q.x, q.z), q.y);
 }
 
 SdfSample ToolSdf::analytic(const glm::dvec3& q, bool withHessian) const {
   SdfSample s;
   const double len = glm::length(q);
-  const double dSphere = len - tool_.tipRadius;
   double rho;
   glm::dvec2 e;
   const double dCyl = cylinder(q, tool_.shaftRadius, tool_.shaftLength, rho, e);
+  if (!tool_.round()) {
+    // A head of revolution: d(ρ, y) of its profile. ∇d = d_ρ ρ̂ + d_y ŷ; the
+    // Hessian is d_ρ ∇²ρ (∇²ρ = (P − ρ̂ρ̂ᵀ)/ρ) plus the profile's own 2-D
+    // Hessian, (I − g gᵀ)/d at a rim corner and zero on a flat side or cap.
+    glm::dvec2 g;
+    bool corner = false;
+    const double dHead = headProfileDistance(tool_.head(), rho, q.y, &g, &corner);
+    if (dHead <= dCyl) {
+      s.distance = dHead;
+      const glm::dvec3 radial = rho > 1e-12 ? glm::dvec3(q.x, 0, q.z) / rho : glm::dvec3(1, 0, 0);
+      s.gradient = radial * g.x + glm::dvec3(0, g.y, 0);
+      if (withHessian) {
+        const glm::dmat3 P(glm::dvec3(1, 0, 0), glm::dvec3(0), glm::dvec3(0, 0, 1));
+        if (rho > 1e-12) s.hessian = (P - outer(radial, radial)) * (g.x / rho);
+        if (corner && dHead > 1e-12) {
+          const glm::dvec3 y(0, 1, 0);
+          // J (I − g gᵀ) Jᵀ / d with J = [ρ̂ ŷ].
+          s.hessian += (outer(radial, radial) + outer(y, y) - outer(s.gradient, s.gradient)) / dHead;
+        }
+      }
+      return s;
+    }
+  }
+  const double dSphere = tool_.round() ? len - tool_.tipRadius : 1e300;
   // Union = min; each branch's derivatives are exact where it is the minimum.
   if (dSphere <= dCyl) {
     s.distance = dSphere;

@@ -1,7 +1,9 @@
 #pragma once
 // ToolSdf: the signed distance of the mill (Algorithm #3's "SPO", §6.1) in the
-// tool's own frame — burr sphere of radius R at the origin, union a shaft
-// cylinder of radius r from y = 0 to y = shaftLength. Negative inside.
+// tool's own frame — the burr head (a sphere of radius R at the origin, or a
+// cylinder, taper or inverted cone centred on it: millsim/haptics/BurrHead.h),
+// union a shaft cylinder of radius r from y = 0 to y = shaftLength. Negative
+// inside.
 //
 // Two forms: the exact analytic distance (with its gradient and Hessian, which
 // the 6×6 stiffness needs), and the paper's precomputed grid, sampled
@@ -29,8 +31,8 @@ public:
 
   const ToolGeometry& tool() const { return tool_; }
   // Local bounding box of the tool (no margin).
-  glm::dvec3 boxLo() const { return {-outer_, -tool_.tipRadius, -outer_}; }
-  glm::dvec3 boxHi() const { return {outer_, std::max(tool_.tipRadius, tool_.shaftLength), outer_}; }
+  glm::dvec3 boxLo() const { return {-outer_, -headHalf(), -outer_}; }
+  glm::dvec3 boxHi() const { return {outer_, std::max(headHalf(), tool_.shaftLength), outer_}; }
 
   // Exact distance alone (the cheap test for "is this point in contact").
   double distance(const glm::dvec3& q) const;
@@ -47,6 +49,9 @@ public:
   std::size_t gridBytes() const { return grid_.size() * sizeof(float); }
 
 private:
+  // How far the head reaches along ±Y from the origin.
+  double headHalf() const { return tool_.round() ? tool_.tipRadius : 0.5 * tool_.tipLength; }
+  double headDistance(const glm::dvec3& q) const;
   bool cell(const glm::dvec3& q, glm::ivec3& i0, glm::dvec3& f) const;
   float at(int i, int j, int k) const { return grid_[(std::size_t(k) * dims_.y + j) * dims_.x + i]; }
 

@@ -62,6 +62,7 @@ LoopSettings LoopSettings::from(const HapticsDevice& device, const ToolGeometry&
   s.limits.torqueLimit = device.torqueLimit.get();
   s.enabled = device.enabled.get();
   s.tipRadius = tool.tipRadius;
+  s.head = tool.head();
   return s;
 }
 
@@ -178,7 +179,11 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   if (retiredHeld_ && retired_.load(std::memory_order_acquire) == nullptr)
     retired_.store(retiredHeld_.release(), std::memory_order_release);
 
-  if (button && out.burrCuts) stats_.removedVolume += scene_.mill(out.burrCentre, settings_.tipRadius);
+  // A non-round head mills along the drawn tool's axis (the pose the renderer shows and holds).
+  if (button && out.burrCuts)
+    stats_.removedVolume += settings_.head.shape == BurrShape::Round
+                                ? scene_.mill(out.burrCentre, settings_.tipRadius)
+                                : scene_.mill(out.burrCentre, out.drawnTool.orientation, settings_.head);
   for (Publisher& p : publishers_) {
     const auto& v = scene_.volume(p.volume);
     static const std::vector<BlockOrigin> kNone;

@@ -65,7 +65,8 @@ struct LoopSettings {
   glm::dvec3 calibrationOffset{0.0};
   SafetyLimits limits;
   bool enabled = true;
-  double tipRadius = 1e-3;    // m: the burr that mills
+  double tipRadius = 1e-3;    // m: the burr that mills (a round head)
+  BurrHead head{};            // a non-round head mills with this (its radius is tipRadius); round uses tipRadius
   bool timing = true;         // measure compute time per frame
   std::size_t logCapacity = 1 << 14;  // frames the scene thread may fall behind by
 

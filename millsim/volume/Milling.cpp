@@ -18,8 +18,40 @@ Miller::Miller(VoxelVolume& volume, float isoValue, const TissueMap* tissues)
       iso_(isoValue) {}
 
 StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlocks& dirty) {
+  if (!(radius > 0.0) || !std::isfinite(centreLocal.x + centreLocal.y + centreLocal.z)) return {};
+  const glm::dvec3 h = volume_.voxelSize();
+  const double ramp = (h.x + h.y + h.z) / 3.0;
+  return stampWith(
+      centreLocal, radius,
+      [radius, ramp](const glm::dvec3& d) { return std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0); },
+      dirty);
+}
+
+StampResult Miller::stamp(const glm::dvec3& centreLocal, const glm::dvec3& axisLocal, const BurrHead& head,
+                          DirtyBlocks& dirty) {
+  if (head.shape == BurrShape::Round) return stamp(centreLocal, head.radius, dirty);
+  if (!(head.radius > 0.0 && head.length > 0.0 && head.endRadius >= 0.0) ||
+      !std::isfinite(centreLocal.x + centreLocal.y + centreLocal.z) ||
+      !std::isfinite(axisLocal.x + axisLocal.y + axisLocal.z))
+    return {};
+  const double axisLength = glm::length(axisLocal);
+  if (!(axisLength > 0.0)) return {};
+  const glm::dvec3 axis = axisLocal / axisLength;
+  const glm::dvec3 h = volume_.voxelSize();
+  const double ramp = (h.x + h.y + h.z) / 3.0;
+  return stampWith(
+      centreLocal, head.boundingRadius(),
+      [&head, axis, ramp](const glm::dvec3& d) {
+        const double y = glm::dot(d, axis);
+        const double rho = std::sqrt(std::max(0.0, glm::dot(d, d) - y * y));
+        return std::clamp(0.5 - headProfileDistance(head, rho, y) / ramp, 0.0, 1.0);
+      },
+      dirty);
+}
+
+template <class Coverage>
+StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Coverage coverageAt, DirtyBlocks& dirty) {
   StampResult result;
-  if (!(radius > 0.0) || !std::isfinite(centreLocal.x + centreLocal.y + centreLocal.z)) return result;
   const glm::dvec3 h = volume_.voxelSize();
   const double ramp = (h.x + h.y + h.z) / 3.0;
   const float air = volume_.airValue();
@@ -72,7 +104,7 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
           const float old = data ? data[((i & 7) << 6) + rowOffset] : acc_.getValue(xyz);
           if (old <= air) continue;  // nothing to remove
           const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
-          const double coverage = std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0);
+          const double coverage = coverageAt(d);
           if (coverage <= 0.0) continue;
           // The density that leaves the voxel a (1 − coverage) material fraction:
           // on the sphere's surface (coverage ½) that is exactly the iso-value.

@@ -13,12 +13,17 @@
 // place again changes nothing (so holding the burr still does not widen the
 // hole). Removed volume is Σ (φ(old) − φ(new)) × voxel volume.
 //
+// Other burr heads (millsim/haptics/BurrHead.h) stamp the same way with the
+// head's exact signed distance d(x): coverage = clamp(0.5 − d(x)/h, 0, 1)
+// (for the sphere d = |x − c| − r, the rule above).
+//
 // Hardness (docs/algorithms.md, "Tissue hardness") sets how fast a renderer
 // advances the burr; the stamp itself only leaves tissue of hardness 0 alone.
 #include <glm/vec3.hpp>
 
 #include <memory>
 
+#include "millsim/haptics/BurrHead.h"
 #include "millsim/volume/DirtyBlocks.h"
 #include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VoxelVolume.h"
@@ -42,10 +47,20 @@ public:
   // Stamps a burr sphere given in the volume's local frame (metres). Marks
   // every changed block in `dirty`. Does not allocate.
   StampResult stamp(const glm::dvec3& centreLocal, double radius, DirtyBlocks& dirty);
+  // Stamps a burr head (dimensions in the volume's local metres) centred at
+  // `centreLocal` whose shaft axis (the tool's local +Y) is the unit vector
+  // `axisLocal`. A round head is exactly the sphere stamp above (bit for bit).
+  // Does not allocate.
+  StampResult stamp(const glm::dvec3& centreLocal, const glm::dvec3& axisLocal, const BurrHead& head,
+                    DirtyBlocks& dirty);
 
   double totalRemoved() const { return totalRemoved_; }
 
 private:
+  // The shared voxel walk: every voxel within `reach` (+ half a ramp) of the
+  // centre, coverage(d) of its offset d from the centre in metres.
+  template <class Coverage>
+  StampResult stampWith(const glm::dvec3& centreLocal, double reach, Coverage coverage, DirtyBlocks& dirty);
   VoxelVolume& volume_;
   VoxelVolume::Grid::Accessor acc_;
   const TissueMap* tissues_;

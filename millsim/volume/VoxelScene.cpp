@@ -122,4 +122,25 @@ double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
   return removed;
 }
 
+double VoxelScene::mill(const glm::dvec3& centreWorld, const glm::dquat& toolOrientation, const BurrHead& head) {
+  if (head.shape == BurrShape::Round) return mill(centreWorld, head.radius);
+  const glm::dvec3 axisWorld = toolOrientation * glm::dvec3(0.0, 1.0, 0.0);
+  double removed = 0.0;
+  for (std::size_t i = 0; i < volumes_.size(); ++i) {
+    Volume& v = *volumes_[i];
+    if (!v.millable.load(std::memory_order_relaxed)) continue;
+    const glm::dvec3 local = glm::dvec3(v.placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
+    const glm::dvec3 axisLocal = glm::dmat3(v.placement.worldToLocal) * axisWorld;  // unit after normalising
+    v.changed.clear();
+    const StampResult res =
+        v.miller.stamp(local, axisLocal, head.scaled(1.0 / v.placement.worldPerLocal), v.changed);
+    removed += res.removedVolume;
+    if (v.changed.empty()) continue;
+    ++v.millEpoch;
+    for (Shell& s : shells_)
+      if (s.volume == i) s.pending.add(v.changed);
+  }
+  return removed;
+}
+
 }  // namespace millsim

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "millsim/haptics/HapticScene.h"
@@ -79,6 +80,10 @@ public:
   // volume). Returns the volume removed (m³, in each volume's local units).
   // Volumes that changed get a new `changed` list and `millEpoch`.
   double mill(const glm::dvec3& centreWorld, double radius);
+  // The same with a burr head (world metres) of the tool with this world
+  // orientation (the head's axis is the tool's local +Y). A round head is
+  // exactly mill(centre, head.radius).
+  double mill(const glm::dvec3& centreWorld, const glm::dquat& toolOrientation, const BurrHead& head);
 
 private:
   // A point shell in use by this scene, and the milling it has not merged yet.

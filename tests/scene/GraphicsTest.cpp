@@ -297,3 +297,42 @@ TEST(SceneDrawer, AdoptsChangedClipPlanesKeepingTheUserCut) {
   drawer.draw(32, 32, {});
   GlContext::check("drawing after adopting cuts");
 }
+
+// The drawn burr head follows MillTool.shape: a taper is narrower at its
+// cutting end (below, the shaft pointing up) than at its shank end, an
+// inverted cone wider, a cylinder the same.
+TEST(SceneDrawer, DrawsTheBurrHeadsShape) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("tool.x3d", x3d(R"(
+    <Background skyColor="0 0 0"/>
+    <Viewpoint position="0 0 0.03" fieldOfView="0.4"/>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto renderer = createSceneRenderer(*r.scene, sized(256));
+  for (BurrShape shape : {BurrShape::Cylinder, BurrShape::Taper, BurrShape::InvertedCone}) {
+    ToolView tool;
+    tool.geometry = ToolGeometry{2e-3, 0.2e-3, 6e-3};
+    tool.geometry.shape = shape;
+    tool.geometry.tipLength = 4e-3;
+    tool.geometry.tipEndRadius = 0.8e-3;
+    tool.pose = Pose{{0, 0, 0}, glm::dquat(1, 0, 0, 0)};
+    renderer->render(tool);
+    const Image img = renderer->readPixels();
+    // Lit width of each row (image rows run top to bottom); head rows are
+    // wider than the shaft's.
+    std::vector<int> widths;
+    for (int y = 0; y < img.height; ++y) {
+      int lo = img.width, hi = -1;
+      for (int x = 0; x < img.width; ++x)
+        if (img.at(x, y).r + img.at(x, y).g + img.at(x, y).b > 60) lo = std::min(lo, x), hi = std::max(hi, x);
+      if (hi >= lo && hi - lo + 1 > 12) widths.push_back(hi - lo + 1);
+    }
+    ASSERT_GT(widths.size(), 20u) << burrShapeName(shape);
+    const int top = widths[widths.size() / 8], bottom = widths[widths.size() * 7 / 8];  // shank end, cutting end
+    std::printf("%s head drawn: %d px wide near the shank end, %d px near the cutting end\n",
+                std::string(burrShapeName(shape)).c_str(), top, bottom);
+    if (shape == BurrShape::Cylinder) EXPECT_NEAR(top, bottom, 2);
+    if (shape == BurrShape::Taper) EXPECT_GT(top, bottom + 10);
+    if (shape == BurrShape::InvertedCone) EXPECT_GT(bottom, top + 10);
+  }
+}

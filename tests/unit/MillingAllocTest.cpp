@@ -98,4 +98,32 @@ TEST_P(MillingAlloc, SteadyStateFramesAllocateNothing) {
 
 INSTANTIATE_TEST_SUITE_P(Scales, MillingAlloc, ::testing::Values(1, 2, 3));
 
+// A non-round head (a tapered burr) mills through the head entry with the
+// drawn tool's orientation, as HapticLoop does: no allocation either.
+TEST(MillingAllocHead, TaperedBurrFramesAllocateNothing) {
+  VoxelVolume volume = makeToothPhantom(ToothPhantomOptions{});
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), 700.0);
+  ToolGeometry tool = kTool;
+  tool.shape = BurrShape::Taper;
+  tool.tipLength = 1.5e-3;
+  tool.tipEndRadius = 0.3e-3;
+  BarbicRenderer renderer;
+  auto algorithm = renderer.compile(tool, scene);
+  algorithm->reset(Pose{{0.0, 12e-3, 0.0}, glm::dquat(1, 0, 0, 0)});
+  long n = 0;
+  double removed = 0.0;
+  auto frame = [&] {
+    const HapticOutput out = algorithm->step(scene, HapticInput{deviceAt(n++), 1e-3, true});
+    if (out.burrCuts) removed += scene.mill(out.burrCentre, out.drawnTool.orientation, tool.head());
+  };
+  for (int i = 0; i < 300; ++i) frame();
+  allocations = 0;
+  counting = true;
+  for (int i = 0; i < 2000; ++i) frame();
+  counting = false;
+  EXPECT_GT(removed, 0.0) << "the burr must cut, or this tests nothing";
+  EXPECT_EQ(allocations.load(), 0) << "allocations in 2000 milling frames with a taper burr";
+}
+
 }  // namespace
