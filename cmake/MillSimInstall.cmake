@@ -3,7 +3,9 @@
 #   target_link_libraries(myapp PRIVATE MillSim::millsim)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS millsim EXPORT MillSimTargets
+# libmillsim_medical (VTK, GDCM) is exported too: integrators that mesh volumes
+# link MillSim::medical (IsoSurface.h); libmillsim opens it next to itself.
+install(TARGETS millsim millsim_medical EXPORT MillSimTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

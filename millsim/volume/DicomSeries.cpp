@@ -44,6 +44,7 @@
 #include <zlib.h>
 
 #include "millsim/volume/ReaderLimits.h"
+#include "millsim/volume/MedicalModule.h"
 #include "millsim/volume/VolumeIO.h"
 
 namespace fs = std::filesystem;
@@ -512,7 +513,7 @@ bool isDicomCandidate(const fs::path& file) {
 
 }  // namespace
 
-VoxelVolume readDicom(const fs::path& fileOrFolder, float airValue) {
+VoxelVolume medical::readDicom(const fs::path& fileOrFolder, float airValue) {
   const std::string name = fileOrFolder.string();
   // GDCM prints warnings and errors on stderr by default; the exceptions carry the reasons.
   gdcm::Trace::SetDebug(false);

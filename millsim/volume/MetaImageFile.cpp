@@ -30,6 +30,7 @@
 #include <zlib.h>
 
 #include "millsim/volume/ReaderLimits.h"
+#include "millsim/volume/MedicalModule.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VtkReading.h"
 
@@ -115,7 +116,7 @@ std::string checkCompressed(std::ifstream& in, std::uintmax_t compressedBytes, s
 
 }  // namespace
 
-VoxelVolume readMetaImage(const fs::path& file, float airValue) {
+VoxelVolume medical::readMetaImage(const fs::path& file, float airValue) {
   const std::string name = file.string();
   requireFile(file, "a MetaImage file");
 

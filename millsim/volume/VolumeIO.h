@@ -24,6 +24,9 @@ LoadedVolume loadVolume(const std::string& url, const std::filesystem::path& bas
 
 VoxelVolume readVdb(const std::filesystem::path& file, float airValue);
 VoxelVolume readNrrd(const std::filesystem::path& file, float airValue);       // .nrrd, .nhdr; raw or gzip
+// readMetaImage, readVti and readDicom are in libmillsim_medical (VTK, GDCM),
+// opened on the first call (MedicalModule.h); a VolumeError says so when it
+// cannot be.
 VoxelVolume readMetaImage(const std::filesystem::path& file, float airValue);  // .mha, .mhd
 VoxelVolume readVti(const std::filesystem::path& file, float airValue);        // VTK XML image data
 // A folder of CT slices (or one slice file): rescale slope/intercept applied,

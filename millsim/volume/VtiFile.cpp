@@ -25,6 +25,7 @@
 #include <vtkXMLImageDataReader.h>
 
 #include "millsim/volume/ReaderLimits.h"
+#include "millsim/volume/MedicalModule.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VtkReading.h"
 
@@ -83,7 +84,7 @@ void checkMarkupSize(std::istream& in, const std::string& name) {
 
 }  // namespace
 
-VoxelVolume readVti(const fs::path& file, float airValue) {
+VoxelVolume medical::readVti(const fs::path& file, float airValue) {
   const std::string name = file.string();
   requireFile(file, "a .vti file");
   std::streamoff fileBytes = 0;

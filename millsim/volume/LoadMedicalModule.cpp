@@ -1,0 +1,64 @@
+// loadMedicalModule() (MedicalModule.h) and the VolumeIO.h entry points of the
+// readers it holds. Part of libmillsim, which only dlopens libmillsim_medical:
+// it never links it, VTK or GDCM.
+#include <mutex>
+#include <string>
+
+#include "millsim/core/SiblingLibrary.h"
+#include "millsim/volume/MedicalModule.h"
+#include "millsim/volume/VolumeIO.h"
+
+namespace millsim {
+
+namespace {
+
+const MedicalModule* open(std::string& error) {
+  const auto* module = static_cast<const MedicalModule*>(openSiblingLibrary(
+      "libmillsim_medical.so", "MILLSIM_MEDICAL_LIBRARY", "millsim_medical_module", "medical-image",
+      "MetaImage, VTI and DICOM reading needs VTK 9.1 and GDCM 3.0: Debian packages libvtk9.1 and libgdcm3.0",
+      error));
+  if (module && module->abiVersion != kMedicalAbiVersion) {
+    error = "the medical-image library is not of MillSim medical ABI version " + std::to_string(kMedicalAbiVersion);
+    return nullptr;
+  }
+  return module;  // the library stays loaded for the life of the process
+}
+
+}  // namespace
+
+const MedicalModule& loadMedicalModule() {
+  static std::mutex mutex;
+  static const MedicalModule* module = nullptr;
+  static std::string error;
+  std::lock_guard lock(mutex);
+  if (!module && error.empty()) module = open(error);
+  if (!module) throw VolumeError(error);
+  return *module;
+}
+
+namespace {
+
+// The module, or a VolumeError that names the file it was opened for, as every reader's errors do.
+const MedicalModule& moduleFor(const std::filesystem::path& file) {
+  try {
+    return loadMedicalModule();
+  } catch (const VolumeError& e) {
+    throw VolumeError(file.string() + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+VoxelVolume readMetaImage(const std::filesystem::path& file, float airValue) {
+  return moduleFor(file).readMetaImage(file, airValue);
+}
+
+VoxelVolume readVti(const std::filesystem::path& file, float airValue) {
+  return moduleFor(file).readVti(file, airValue);
+}
+
+VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue) {
+  return moduleFor(fileOrFolder).readDicom(fileOrFolder, airValue);
+}
+
+}  // namespace millsim
