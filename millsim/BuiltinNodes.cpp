@@ -10,6 +10,7 @@
 #include "millsim/haptics/MillTool.h"
 #include "millsim/lesson/ForbiddenRegion.h"
 #include "millsim/lesson/MillingTarget.h"
+#include "millsim/lesson/RegionChecks.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
@@ -25,6 +26,7 @@ void registerBuiltinNodes(NodeRegistry& r) {
                             &ForbiddenRegion::type()})
     r.add(*t);
   r.addSceneCheck(&checkDevices);
+  r.addSceneCheck(&checkRegions);
 }
 
 NodeRegistry builtinRegistry() {

@@ -13,7 +13,7 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
   bool needLabels = false;
   for (const Tissue* t : tissues) {
     map->entries_.push_back(Entry{t->name.get(), t->hardness.get(), t->color.get().rgb});
-    needLabels |= !t->byDensity();
+    needLabels |= !t->byDensity() && t->label.get() >= 0;
   }
   if (needLabels && !labelVolume)
     throw VolumeError("a Tissue is chosen by label, but the VolumeObject has no labelUrl volume");
@@ -44,7 +44,7 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
       for (std::size_t t = 0; t < tissues.size() && entry == 0; ++t) {
         const Tissue& ts = *tissues[t];
         const glm::vec2 r = ts.densityRange.get();
-        const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : std::lround(l) == ts.label.get();
+        const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : ts.label.get() >= 0 && std::lround(l) == ts.label.get();
         if (match) entry = int(t) + 1;
       }
       v.setValue(entry);
