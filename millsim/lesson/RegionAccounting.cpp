@@ -78,6 +78,8 @@ struct RegionAccounting::Volume {
 };
 
 RegionAccounting::RegionAccounting(const Scene& scene) {
+  // A scene without regions costs nothing: no snapshot of its volumes.
+  if (scene.nodesOfType<AssessmentRegion>().empty()) return;
   for (const PlacedVolume& p : placedVolumes(scene)) {
     auto v = std::make_unique<Volume>();
     const VoxelVolume& live = *p.node->volume();

@@ -110,7 +110,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
           // on the sphere's surface (coverage ½) that is exactly the iso-value.
           const float now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
           if (now >= old) continue;
-          // A tissue of hardness 0 (a tooth's pulp guard, a implant) is never cut.
+          // A tissue of hardness 0 (an implant, a guard a lesson sets) is never cut.
           if (tissues_ &&
               !(tissues_->hardness()[std::size_t(labelLeaf ? labelLeaf->getValue(((i & 7) << 6) + rowOffset) : tileLabel)] > 0.f))
             continue;
