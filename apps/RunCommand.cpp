@@ -255,6 +255,13 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         if (c.kind == WindowCommand::Kind::ToggleEnabled) run.device->enabled.set(!run.device->enabled.get());
         if (c.kind == WindowCommand::Kind::ToggleMillable)
           for (VolumeObject* v : r.scene->nodesOfType<VolumeObject>()) v->millable.set(!v->millable.get());
+        // B: the next burr shape, same dimensions; the pool swaps to it below (or refuses it).
+        if (c.kind == WindowCommand::Kind::NextBurrShape && run.device->tool.get()) {
+          MillTool& t = *run.device->tool.get();
+          t.shape.set(std::string(nextBurrShape(t.geometry().shape)));
+          // A cone needs its narrow end narrower than the head: halve it if a round burr's dimensions do not say so.
+          if (t.tipEndRadius.get() > t.tipRadius.get()) t.tipEndRadius.set(0.5f * t.tipRadius.get());
+        }
       }
       if (std::string s = live.poll(); !s.empty()) status = s;
       if (!pool) {
@@ -269,6 +276,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       }
       if (std::string s = pool->followDeviceField(*loop); !s.empty()) status = s;
       if (std::string s = pool->followRendererFields(*loop); !s.empty()) status = s;
+      if (std::string s = pool->followTool(*loop); !s.empty()) status = s;
       HudState h = hud.state(status);
       h.swapPending = std::string(h.renderer) != pool->typeName(pool->current());
       controls.setHud(h);

@@ -73,7 +73,7 @@ void RunGraphics::run() {
       [&](std::size_t i, const std::vector<BlockOrigin>& blocks) { renderer->volumeChanged(i, blocks); },
       [&] {
         const FrameRecord& f = loop_.newest().read();
-        renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(tool_, f.out)) : std::nullopt);
+        renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(f.tool, f.out)) : std::nullopt);
         renderer->readPixels();  // finish the frame, as a display copy would
       },
       [&] { return renderer->readPixels(); });
@@ -118,9 +118,9 @@ void RunGraphics::runWindow() {
                const FrameRecord& f = loop_.newest().read();
                std::vector<ToolView> tools;
                if (f.frame > 0 || f.t > 0.0) {
-                 tools.push_back(toolView(tool_, f.out));
+                 tools.push_back(toolView(f.tool, f.out));
                  if (options_.pointer)  // the mouse's own pose, where the renderer's tool is held back
-                   tools.push_back(ToolView{tool_, f.device, false, glm::dvec3(0.0), true});
+                   tools.push_back(ToolView{f.tool, f.device, false, glm::dvec3(0.0), true});
                }
                window->draw(tools, options_.controls->hud());
                if (options_.stallMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(options_.stallMs));

@@ -4,6 +4,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "millsim/core/FieldValues.h"
+
 namespace millsim::app {
 
 void HudFeed::add(const FrameRecord& r) {
@@ -19,6 +21,7 @@ HudState HudFeed::state(const std::string& status) const {
   HudState h;
   h.status = status;
   h.renderer = last_.renderer;
+  h.burr = std::string(burrShapeName(last_.tool.shape)) + " " + formatNumber(float(last_.tool.tipRadius * 1e3)) + " mm";
   h.force = glm::length(last_.force);
   h.torque = glm::length(last_.torque);
   h.contacts = last_.out.contacts;

@@ -13,6 +13,8 @@ install(TARGETS millsim-app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # libmillsim_graphics sits next to libmillsim, where loadGraphicsModule() looks for it.
 install(TARGETS millsim_graphics LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS millsim_audio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# libmillsim_window too: an installed `millsim run` opens its window with it (loadWindowModule).
+install(TARGETS millsim_window LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The public headers: every library header but the internals listed in
 # cmake/private-headers.txt (scripts/include-graph checks that no public header
 # includes one, and that none reaches Eigen or VTK).

@@ -136,7 +136,7 @@ FuzzResult fuzzThroughLoop(const RendererSpec& spec, long frames, std::uint64_t 
   LoopSettings s;
   s.timing = false;
   s.logCapacity = 8;
-  s.tipRadius = standardTool().tipRadius;
+  s.tool = standardTool();
   HapticLoop loop(*scene->scene, node->compile(standardTool(), *scene->scene),
                   std::make_unique<FuzzDriver>(source, drop, what), s);
   FuzzResult r;

@@ -43,6 +43,9 @@ public:
   // False: graphics do not draw this node's descendants (an assessment
   // region's shapes mark where it is; they are not something to see).
   virtual bool showsDescendants() const { return true; }
+  // True: descendants that are shown are drawn see-through (an assessment
+  // region made visible shows where it is without hiding the tooth).
+  virtual bool showsDescendantsTranslucent() const { return false; }
 
 private:
   friend class Field;

@@ -45,7 +45,7 @@ RecordedRun RecordedRun::parse(const std::string& text, const std::string& file)
   std::string_view rest = stripBom(text);
   int lineNo = 0;
   int column[kNeededCount];
-  int flagsColumn = -1, rendererColumn = -1;
+  int flagsColumn = -1, rendererColumn = -1, toolColumn = -1;
   std::size_t width = 0;
   bool stopped = false;
   while (!rest.empty()) {
@@ -69,6 +69,7 @@ RecordedRun RecordedRun::parse(const std::string& text, const std::string& file)
       if (auto it = std::find(cells.begin(), cells.end(), "flags"); it != cells.end()) flagsColumn = int(it - cells.begin());
       if (auto it = std::find(cells.begin(), cells.end(), "renderer"); it != cells.end())
         rendererColumn = int(it - cells.begin());
+      if (auto it = std::find(cells.begin(), cells.end(), "tool"); it != cells.end()) toolColumn = int(it - cells.begin());
       width = cells.size();
       continue;
     }
@@ -113,6 +114,16 @@ RecordedRun RecordedRun::parse(const std::string& text, const std::string& file)
       auto known = std::find(run.renderers_.begin(), run.renderers_.end(), name);
       if (known == run.renderers_.end()) known = run.renderers_.insert(run.renderers_.end(), std::string(name));
       f.renderer = int(known - run.renderers_.begin());
+    }
+    if (toolColumn >= 0) {
+      const std::string_view cell = cells[std::size_t(toolColumn)];
+      ToolGeometry tool;
+      if (!parseToolCell(cell, tool))
+        throw TrajectoryError(where() + "column 'tool' is not a burr ('shape tipRadius tipLength tipEndRadius "
+                                        "shaftRadius shaftLength', m): '" + std::string(cell) + "'");
+      auto known = std::find(run.tools_.begin(), run.tools_.end(), tool);
+      if (known == run.tools_.end()) known = run.tools_.insert(run.tools_.end(), tool);
+      f.tool = int(known - run.tools_.begin());
     }
     if (run.frames_.size() >= Trajectory::kMaxRows)
       throw TrajectoryError(where() + "more than " + std::to_string(Trajectory::kMaxRows) + " rows");

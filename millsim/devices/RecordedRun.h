@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "millsim/haptics/MillTool.h"
 #include "millsim/math/Pose.h"
 
 namespace millsim {
@@ -19,6 +20,7 @@ struct RecordedFrame {
   Pose device;            // world frame, calibration applied
   bool button = false;
   int renderer = -1;      // index into RecordedRun::renderers(), -1 if the log has no renderer column
+  int tool = -1;          // index into RecordedRun::tools(), -1 if the log has no tool column
 };
 
 class RecordedRun {
@@ -33,10 +35,13 @@ public:
   const std::vector<RecordedFrame>& frames() const { return frames_; }
   // The renderer type names the log mentions, in order of first appearance.
   const std::vector<std::string>& renderers() const { return renderers_; }
+  // The burrs the log mentions (its tool column), in order of first appearance.
+  const std::vector<ToolGeometry>& tools() const { return tools_; }
 
 private:
   std::vector<RecordedFrame> frames_;
   std::vector<std::string> renderers_;
+  std::vector<ToolGeometry> tools_;
 };
 
 }  // namespace millsim

@@ -135,11 +135,35 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
     program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
     meshes_[i]->draw();
   }
-  for (const DrawShape& s : scene_.shapes) {
+  auto drawShape = [&](const DrawShape& s) {
     program_->setObject(s.model, s.material, &s.material.diffuse, false, planesFor(s.cuts, false));
     (s.kind == DrawShape::Kind::Sphere ? *sphere_ : s.kind == DrawShape::Kind::Cylinder ? *cylinder_ : *box_).draw();
-  }
+  };
+  std::vector<const DrawShape*> seeThrough;
+  for (const DrawShape& s : scene_.shapes)
+    if (s.material.transparency > 0.f) seeThrough.push_back(&s);
+    else drawShape(s);
   for (const ToolView& t : tools) drawTool(t);
+  // See-through shapes last, farthest first, blended over what is behind them
+  // and not hiding each other in the depth buffer (enough for a few convex
+  // region shapes; no per-triangle sorting). Region overlays ignore depth:
+  // they show through the tooth that holds them.
+  if (!seeThrough.empty()) {
+    const glm::dvec3 eye = camera_.eye();
+    auto distance = [&](const DrawShape* s) { return glm::length(glm::dvec3(s->model[3]) - eye); };
+    std::stable_sort(seeThrough.begin(), seeThrough.end(),
+                     [&](const DrawShape* a, const DrawShape* b) { return distance(a) > distance(b); });
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    for (const DrawShape* s : seeThrough) {
+      if (s->overlay) glDisable(GL_DEPTH_TEST);
+      drawShape(*s);
+      glEnable(GL_DEPTH_TEST);
+    }
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+  }
   for (int i = 0; i < kMaxClipPlanes; ++i) glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
   glBindVertexArray(0);
 }

@@ -56,6 +56,7 @@ DrawMaterial materialOf(const Shape& shape) {
   m.emissive = mat->emissiveColor.get().rgb;
   m.ambient = mat->ambientIntensity.get();
   m.shininess = mat->shininess.get();
+  m.transparency = mat->transparency.get();
   return m;
 }
 
@@ -147,6 +148,10 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint) {
     if (auto* shape = dynamic_cast<Shape*>(&n); shape && at.shown) {
       Node* g = shape->geometry.get().get();
       DrawShape d{DrawShape::Kind::Sphere, m, materialOf(*shape), *at.clipPlanes, {}};
+      if (at.translucent) {
+        d.material.transparency = std::max(d.material.transparency, kRegionTransparency);
+        d.overlay = true;
+      }
       bool known = true;
       if (auto* s = dynamic_cast<Sphere*>(g))
         d.model = glm::scale(m, glm::dvec3(s->radius.get()));

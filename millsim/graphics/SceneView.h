@@ -42,7 +42,12 @@ Camera makeCamera(const ViewSpec& view, int width, int height, double nearDistan
 struct DrawMaterial {
   glm::vec3 diffuse{0.8f}, specular{0.f}, emissive{0.f};
   float ambient = 0.2f, shininess = 0.2f;  // X3D's [0, 1] shininess
+  float transparency = 0.f;                 // X3D's: 0 opaque, 1 invisible
 };
+
+// How transparent a shape under a visible assessment region is drawn at least:
+// the region shows where it is without hiding the tooth inside it.
+inline constexpr float kRegionTransparency = 0.65f;
 
 // World-space planes (a, b, c, d), unit normal: a point p stays when dot(plane, (p, 1)) >= 0.
 using ClipPlanes = std::vector<glm::dvec4>;
@@ -62,6 +67,9 @@ struct DrawShape {
   DrawMaterial material;
   ClipPlanes clipPlanes;  // as authored (world)
   std::vector<int> cuts;  // the same planes as indices into SceneView::cutPlanes
+  // An assessment region's shape: drawn see-through over everything, even
+  // where the tooth hides it (a target inside the crown shows where to cut).
+  bool overlay = false;
 };
 
 struct DrawVolume {

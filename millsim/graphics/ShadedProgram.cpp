@@ -51,6 +51,7 @@ uniform float uShininess;
 uniform vec3 uEmissive;
 uniform float uAmbient;
 uniform int uTint;
+uniform float uOpacity;
 out vec4 fragColour;
 void main() {
   vec3 n = normalize(vNormal);
@@ -62,7 +63,7 @@ void main() {
   float sHead = head > 0.0 ? pow(max(dot(n, normalize(uHead + v)), 0.0), uShininess) : 0.0;
   float sFill = fill > 0.0 ? pow(max(dot(n, normalize(uFill + v)), 0.0), uShininess) : 0.0;
   vec3 c = base * (uAmbient + 0.70 * head + 0.40 * fill) + uSpecular * (sHead + 0.5 * sFill) + uEmissive;
-  fragColour = vec4(clamp(c, 0.0, 1.0), 1.0);
+  fragColour = vec4(clamp(c, 0.0, 1.0), uOpacity);
 }
 )";
 
@@ -104,7 +105,7 @@ ShadedProgram::ShadedProgram() {
   uModel_ = u("uModel"), uViewProj_ = u("uViewProj"), uNormalMatrix_ = u("uNormalMatrix"), uEye_ = u("uEye");
   uHead_ = u("uHead"), uFill_ = u("uFill"), uSpecular_ = u("uSpecular"), uShininess_ = u("uShininess");
   uEmissive_ = u("uEmissive"), uAmbient_ = u("uAmbient"), uTint_ = u("uTint"), uClipCount_ = u("uClipCount");
-  uClip_ = u("uClip");
+  uClip_ = u("uClip"), uOpacity_ = u("uOpacity");
 }
 
 ShadedProgram::~ShadedProgram() { glDeleteProgram(program_); }
@@ -130,6 +131,7 @@ void ShadedProgram::setObject(const glm::dmat4& model, const DrawMaterial& m, co
   glUniform3fv(uEmissive_, 1, glm::value_ptr(m.emissive));
   glUniform1f(uAmbient_, m.ambient);
   glUniform1i(uTint_, tintInside ? 1 : 0);
+  glUniform1f(uOpacity_, 1.f - m.transparency);
   const int n = std::min(int(clipPlanes.size()), kMaxClipPlanes);
   glm::vec4 planes[kMaxClipPlanes];
   for (int i = 0; i < n; ++i) planes[i] = glm::vec4(clipPlanes[std::size_t(i)]);

@@ -27,7 +27,7 @@ public:
 private:
   unsigned program_ = 0;
   int uModel_, uViewProj_, uNormalMatrix_, uEye_, uHead_, uFill_, uSpecular_, uShininess_, uEmissive_, uAmbient_,
-      uTint_, uClipCount_, uClip_;
+      uTint_, uClipCount_, uClip_, uOpacity_;
 };
 
 }  // namespace millsim

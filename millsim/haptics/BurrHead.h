@@ -47,6 +47,17 @@ inline std::string_view burrShapeName(BurrShape s) {
   return "round";
 }
 
+// The shape after `s` in the order above, round after inverted-cone (the window's B key).
+inline std::string_view nextBurrShape(BurrShape s) {
+  switch (s) {
+    case BurrShape::Round: return "cylinder";
+    case BurrShape::Cylinder: return "taper";
+    case BurrShape::Taper: return "inverted-cone";
+    case BurrShape::InvertedCone: return "round";
+  }
+  return "round";
+}
+
 // The head's dimensions (in whatever length unit the caller works in).
 struct BurrHead {
   BurrShape shape = BurrShape::Round;

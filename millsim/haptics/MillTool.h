@@ -6,6 +6,9 @@
 // the burr centre along the tool's local +Y for shaftLength. A non-round head
 // is centred on the burr centre and spans y in [−tipLength/2, +tipLength/2],
 // its cutting end at −tipLength/2.
+#include <string>
+#include <string_view>
+
 #include "millsim/core/NodeKinds.h"
 #include "millsim/haptics/BurrHead.h"
 
@@ -22,7 +25,15 @@ struct ToolGeometry {
 
   BurrHead head() const { return {shape, tipRadius, tipLength, tipEndRadius}; }
   bool round() const { return shape == BurrShape::Round; }
+  bool operator==(const ToolGeometry&) const = default;
 };
+
+// The tool as one CSV cell of a frame log: "shape tipRadius tipLength
+// tipEndRadius shaftRadius shaftLength" (m, numbers that read back exactly),
+// so a review mills with the burr each frame was milled with.
+std::string toolCell(const ToolGeometry& tool);
+// Reads a toolCell; false if `cell` is not one.
+bool parseToolCell(std::string_view cell, ToolGeometry& tool);
 
 class MillTool : public Node {
 public:
@@ -33,7 +44,8 @@ public:
   SFString shape{this, "shape", Access::InputOutput, "round",
                  "The cutting head: \"round\" (a sphere), \"cylinder\" (flat-ended), \"taper\" (narrow at the "
                  "cutting end) or \"inverted-cone\" (wide at the cutting end). Non-round heads are centred on the "
-                 "burr centre along local Y, cutting end at -tipLength/2."};
+                 "burr centre along local Y, cutting end at -tipLength/2. Live in the window of millsim run (key B, or "
+                 "any MillTool field): the renderer is compiled again for the new burr and cross-faded in."};
   SFFloat tipRadius{this, "tipRadius", Access::InputOutput, 1.0e-3f,
                     "Radius of the burr sphere, or the widest radius of a non-round head (m).",
                     Range::openClosed(0, 0.01)};
@@ -57,7 +69,19 @@ public:
     g.tipEndRadius = tipEndRadius.get();
     return g;
   }
+  // Sets the fields to `g` (a review's recorded burr, a refused swap's kept one).
+  void setGeometry(const ToolGeometry& g) {
+    shape.set(std::string(burrShapeName(g.shape)));
+    tipRadius.set(float(g.tipRadius));
+    tipLength.set(float(g.tipLength));
+    tipEndRadius.set(float(g.tipEndRadius));
+    shaftRadius.set(float(g.shaftRadius));
+    shaftLength.set(float(g.shaftLength));
+  }
   void initialize(DiagnosticSink& sink) override;
+  // What is wrong with the current field values as a burr (empty: nothing).
+  // initialize() reports it at load; a live change (a burr swap) is refused with it.
+  std::string problem() const;
 };
 
 }  // namespace millsim

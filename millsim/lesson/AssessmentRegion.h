@@ -16,10 +16,12 @@ public:
   MFString tissues{this, "tissues", Access::InitializeOnly, {},
                    "Names of Tissues (of any VolumeObject) that are part of the region."};
   SFBool visible{this, "visible", Access::InputOutput, false,
-                 "Draw the region's shapes (with their own Appearance); regions are not drawn by default."};
+                 "Draw the region's shapes see-through (their own Appearance, at least 65 % transparent) over the tooth; "
+                 "regions are not drawn by default."};
   SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed inside the region (m³)."};
 
   bool showsDescendants() const override { return visible.get(); }
+  bool showsDescendantsTranslucent() const override { return true; }
   void initialize(DiagnosticSink& sink) override;
 };
 

@@ -7,7 +7,7 @@ namespace millsim {
 const char* frameLogHeader() {
   return "t,x,y,z,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,frame_us,"
          "draw_x,draw_y,draw_z,draw_qw,draw_qx,draw_qy,draw_qz,proxy_x,proxy_y,proxy_z,ip_x,ip_y,ip_z,"
-         "button,removed_mm3,flags,period_us,renderer\n";
+         "button,removed_mm3,flags,period_us,renderer,tool\n";
 }
 
 void appendFrameRow(std::string& out, const FrameRecord& r) {
@@ -34,6 +34,8 @@ void appendFrameRow(std::string& out, const FrameRecord& r) {
   out += formatNumber(r.periodUs);
   out += ',';
   out += r.renderer;
+  out += ',';
+  out += toolCell(r.tool);
   out += '\n';
 }
 

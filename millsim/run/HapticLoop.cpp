@@ -61,8 +61,7 @@ LoopSettings LoopSettings::from(const HapticsDevice& device, const ToolGeometry&
   s.limits.forceLimit = device.forceLimit.get();
   s.limits.torqueLimit = device.torqueLimit.get();
   s.enabled = device.enabled.get();
-  s.tipRadius = tool.tipRadius;
-  s.head = tool.head();
+  s.tool = tool;
   return s;
 }
 
@@ -93,6 +92,7 @@ HapticLoop::HapticLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algor
   liveTorqueLimit_.store(settings.limits.torqueLimit);
   names_.push_back(switch_.current().name());
   currentName_ = names_.back().c_str();
+  tool_ = sentTool_ = settings.tool;
 }
 
 HapticLoop::~HapticLoop() {
@@ -100,7 +100,7 @@ HapticLoop::~HapticLoop() {
   join();
   finish();
   collectRetired();
-  delete incoming_.exchange(nullptr);
+  if (Incoming* pending = incoming_.exchange(nullptr)) delete pending->algorithm;
 }
 
 void HapticLoop::publishBlocks(std::size_t index, BlockChannel& channel) {
@@ -109,16 +109,21 @@ void HapticLoop::publishBlocks(std::size_t index, BlockChannel& channel) {
                                   scene_.volume(index).millEpoch});
 }
 
-bool HapticLoop::replaceRenderer(std::unique_ptr<HapticAlgorithm>& next) {
+bool HapticLoop::replaceRenderer(std::unique_ptr<HapticAlgorithm>& next, const ToolGeometry* tool) {
   if (!next) throw std::invalid_argument("HapticLoop::replaceRenderer: no algorithm");
   // Only this thread fills the mailbox, so an empty one stays empty until the
-  // store below; the name goes first, and the mailbox's release publishes it.
+  // store below; the slot is written first, and the mailbox's release publishes it.
   if (incoming_.load(std::memory_order_acquire) != nullptr) return false;
   const std::string name = next->name();
   auto known = std::find(names_.begin(), names_.end(), name);
   if (known == names_.end()) known = names_.insert(names_.end(), name);
-  incomingName_.store(known->c_str(), std::memory_order_relaxed);
-  incoming_.store(next.release(), std::memory_order_release);
+  if (tool) sentTool_ = *tool;
+  Incoming& slot = incomingSlots_[nextSlot_];
+  nextSlot_ ^= 1;
+  slot.name = known->c_str();
+  slot.tool = sentTool_;
+  slot.algorithm = next.release();
+  incoming_.store(&slot, std::memory_order_release);
   return true;
 }
 
@@ -168,9 +173,10 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   }
   lastDevice_ = device;
   if (nextFrame_ == 0) switch_.current().reset(device);
-  if (HapticAlgorithm* next = incoming_.exchange(nullptr, std::memory_order_acq_rel)) {
-    currentName_ = incomingName_.load(std::memory_order_relaxed);
-    switch_.replace(std::unique_ptr<HapticAlgorithm>(next), device);
+  if (Incoming* next = incoming_.exchange(nullptr, std::memory_order_acq_rel)) {
+    currentName_ = next->name;
+    tool_ = next->tool;
+    switch_.replace(std::unique_ptr<HapticAlgorithm>(next->algorithm), device);
   }
 
   HapticOutput out = switch_.step(scene_, HapticInput{device, dt, button});
@@ -181,9 +187,8 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
 
   // A non-round head mills along the drawn tool's axis (the pose the renderer shows and holds).
   if (button && out.burrCuts)
-    stats_.removedVolume += settings_.head.shape == BurrShape::Round
-                                ? scene_.mill(out.burrCentre, settings_.tipRadius)
-                                : scene_.mill(out.burrCentre, out.drawnTool.orientation, settings_.head);
+    stats_.removedVolume += tool_.round() ? scene_.mill(out.burrCentre, tool_.tipRadius)
+                                          : scene_.mill(out.burrCentre, out.drawnTool.orientation, tool_.head());
   for (Publisher& p : publishers_) {
     const auto& v = scene_.volume(p.volume);
     static const std::vector<BlockOrigin> kNone;
@@ -215,6 +220,7 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   r.computeUs = settings_.timing ? microseconds(Clock::now() - begin) : 0.0;
   r.periodUs = periodUs;
   r.removedVolume = stats_.removedVolume;
+  r.tool = tool_;
   r.renderer = currentName_;
   records_.push(r);
   newest_.publish();
@@ -313,6 +319,7 @@ void HapticLoop::recordStop() {
   r.computeUs = 0.0;
   r.periodUs = 0.0;
   r.removedVolume = stats_.removedVolume;
+  r.tool = tool_;
   r.renderer = currentName_;
   records_.push(r);
   newest_.publish();

@@ -53,6 +53,7 @@ struct FrameRecord {
   double computeUs = 0.0; // device I/O + step + milling; 0 unless timing is on
   double periodUs = 0.0;  // time since the previous frame started
   double removedVolume = 0.0;  // m³ milled so far
+  ToolGeometry tool;           // the burr that milled this frame (a live burr swap changes it)
   // The renderer in charge (during a cross-fade, the one fading in): its
   // HapticAlgorithm::name(), interned by the loop for the loop's lifetime.
   const char* renderer = "";
@@ -65,8 +66,7 @@ struct LoopSettings {
   glm::dvec3 calibrationOffset{0.0};
   SafetyLimits limits;
   bool enabled = true;
-  double tipRadius = 1e-3;    // m: the burr that mills (a round head)
-  BurrHead head{};            // a non-round head mills with this (its radius is tipRadius); round uses tipRadius
+  ToolGeometry tool;          // the burr the first renderer was compiled for, and mills with
   bool timing = true;         // measure compute time per frame
   std::size_t logCapacity = 1 << 14;  // frames the scene thread may fall behind by
 
@@ -131,9 +131,16 @@ public:
 
   // One thread but the haptic one (the scene thread): the algorithm takes
   // over at the next frame, cross-faded (RendererSwitch). False, and `next`
-  // untouched, if the previous swap is still pending.
-  bool replaceRenderer(std::unique_ptr<HapticAlgorithm>& next);
-  bool replaceRenderer(std::unique_ptr<HapticAlgorithm>&& next) { return replaceRenderer(next); }
+  // untouched, if the previous swap is still pending. `tool` is the burr
+  // `next` was compiled for: from the frame it takes over, the loop mills
+  // with it and records it (a burr swap is a renderer swap with a new tool);
+  // without one the current burr stays.
+  bool replaceRenderer(std::unique_ptr<HapticAlgorithm>& next, const ToolGeometry* tool = nullptr);
+  bool replaceRenderer(std::unique_ptr<HapticAlgorithm>&& next, const ToolGeometry* tool = nullptr) {
+    return replaceRenderer(next, tool);
+  }
+  // The burr the loop mills with now, or will from the pending swap on (scene thread).
+  const ToolGeometry& toolAfterSwaps() const { return sentTool_; }
   // Any thread but the haptic one: the device node's live fields (enabled,
   // forceLimit, torqueLimit), applied from the next frame on. Wait-free.
   void setLive(bool enabled, double forceLimit, double torqueLimit);
@@ -188,13 +195,25 @@ private:
 
   SpscRing<FrameRecord> records_;
   TripleBuffer<FrameRecord> newest_;
-  std::atomic<HapticAlgorithm*> incoming_{nullptr};
+  // A swap in flight: the algorithm with its name and burr. Two slots used in
+  // turn, so the scene thread never writes the slot the haptic thread may
+  // still be reading (it reuses a slot only after the other one was taken,
+  // which happens in a later frame than the read).
+  struct Incoming {
+    HapticAlgorithm* algorithm = nullptr;
+    const char* name = "";
+    ToolGeometry tool;
+  };
+  Incoming incomingSlots_[2];
+  int nextSlot_ = 0;                       // scene thread
+  ToolGeometry sentTool_;                  // scene thread: the burr of the newest swap sent
+  std::atomic<Incoming*> incoming_{nullptr};
   std::atomic<HapticAlgorithm*> retired_{nullptr};
+  ToolGeometry tool_;                      // haptic thread: the burr that mills
   std::unique_ptr<HapticAlgorithm> retiredHeld_;  // waiting for the retired mailbox to empty
   // Renderer names for FrameRecord::renderer: interned by the scene thread (a
   // deque never moves its strings), handed over with the algorithm.
   std::deque<std::string> names_;
-  std::atomic<const char*> incomingName_{nullptr};
   const char* currentName_ = "";
 
   // Live fields (setLive): written by the scene thread, read at each frame.

@@ -5,9 +5,10 @@
 // — and hands each change over wait-free:
 //   device enabled, forceLimit, torqueLimit → HapticLoop::setLive
 //   VolumeObject millable                    → VoxelScene::Volume::millable
-//   device hapticsRenderer                   → RendererPool (when there is one)
-// Everything else a run compiled (Transforms, renderer parameters, the tool,
-// the rate) takes effect at the next run; docs/nodes.md says so per field.
+//   device hapticsRenderer, MillTool fields  → RendererPool (when there is one:
+//                                              followDeviceField, followTool)
+// Everything else a run compiled (Transforms, Barbic's parameters, the rate)
+// takes effect at the next run; docs/nodes.md says so per field.
 #include <string>
 #include <vector>
 

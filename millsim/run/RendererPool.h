@@ -9,7 +9,14 @@
 // Slots: LineProxyRenderer, SurfacePointRenderer, BarbicRenderer (keys 1, 2,
 // 3), then any other registered renderer type (plugins) by name. The device's
 // own renderer node serves its type's slot, so its authored fields hold; the
-// other types run with their defaults. Scene thread only.
+// other types run with their defaults. A type that cannot render the burr
+// (LineProxyRenderer and a non-round head) stays in its slot, refusing with
+// its reason when selected.
+//
+// A burr swap (the device's MillTool fields changed: the B key, a route, a
+// plugin) compiles the rendering algorithm again for the new burr and hands it
+// over with the burr (HapticLoop::replaceRenderer), cross-faded like any swap;
+// the other slots are compiled again for it. Scene thread only.
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +57,13 @@ public:
   // The device's hapticsRenderer field was set (by a route or a plugin): swap
   // to that node's slot. Returns what to tell the user (empty: nothing changed).
   std::string followDeviceField(HapticLoop& loop);
+  // The device's MillTool changed (the B key, a route, a plugin): swap to the
+  // new burr, or refuse it — setting the fields back to the burr that stays —
+  // if it is not a valid burr or the rendering type cannot render it.
+  // Returns what to tell the user (empty: nothing changed).
+  std::string followTool(HapticLoop& loop);
+  // The burr every slot is compiled for (the one milling, once a pending swap lands).
+  const ToolGeometry& tool() const;
 
 private:
   struct Slot {
@@ -58,7 +72,11 @@ private:
     std::unique_ptr<HapticAlgorithm> algorithm;  // null while the loop has it
     const HapticAlgorithm* identity = nullptr;   // recognises it when it comes back
     std::string fields;                          // the node's field values when last compiled
+    ToolGeometry tool;                           // the burr `algorithm` was compiled for
+    std::string refusal;                         // why this type cannot render that burr (empty: it can)
   };
+  // Compiles the slot's node for run_.tool (its algorithm must be here).
+  void prepare(Slot& s);
   CompiledRun& run_;
   std::vector<Slot> slots_;
   std::size_t current_ = 0;

@@ -93,16 +93,23 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
   const auto& names = recorded.renderers();
   const auto& frames = recorded.frames();
   const std::string first = names.empty() ? std::string() : names[std::size_t(std::max(frames.front().renderer, 0))];
+  // The review mills with the burr the run milled with, from its first frame.
+  const auto& tools = recorded.tools();
+  MillTool* toolNode = nullptr;
+  if (HapticsDevice* device = findDevice(scene)) toolNode = device->tool.get().get();
+  if (toolNode && frames.front().tool >= 0) toolNode->setGeometry(tools[std::size_t(frames.front().tool)]);
   CompiledRun run = compileForReplay(scene, options.renderer.empty() ? first : options.renderer, options);
   // The log's poses are world poses, calibration already applied.
   run.settings.calibrationRotation = glm::dquat(1.0, 0.0, 0.0, 0.0);
   run.settings.calibrationOffset = glm::dvec3(0.0);
 
-  // Swaps the run made (a renderer column that changes) are made again, at
-  // the same frames, with renderers prepared as the live run prepared them.
+  // Swaps the run made (a renderer or tool column that changes) are made
+  // again, at the same frames, with renderers prepared as the live run
+  // prepared them (a --renderer override keeps to its renderer).
   const bool swaps = options.renderer.empty() && names.size() > 1;
+  const bool burrSwaps = toolNode && tools.size() > 1;
   std::unique_ptr<RendererPool> pool;
-  if (swaps) pool = std::make_unique<RendererPool>(scene, run, run.algorithm.get());
+  if (swaps || burrSwaps) pool = std::make_unique<RendererPool>(scene, run, run.algorithm.get());
   auto slotOf = [&](const std::string& type) {
     const auto types = pool->typeNames();
     const auto it = std::find(types.begin(), types.end(), type);
@@ -116,14 +123,22 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
   if (options.onLoop) options.onLoop(loop);
   FrameLogWriter writer(log);
   if (options.onFrame) writer.observe(options.onFrame);
-  int renderer = frames.front().renderer;
+  int renderer = frames.front().renderer, tool = frames.front().tool;
   for (const RecordedFrame& f : frames) {
     if (f.t > options.until) break;
-    if (pool && f.renderer != renderer) {
+    if (swaps && f.renderer != renderer) {
       pool->collect(loop);
       const std::string& next = names[std::size_t(f.renderer)];
       pool->select(slotOf(next), loop);
       renderer = f.renderer;
+    }
+    if (burrSwaps && f.tool != tool) {
+      pool->collect(loop);
+      toolNode->setGeometry(tools[std::size_t(f.tool)]);
+      const std::string said = pool->followTool(loop);
+      if (!(pool->tool() == tools[std::size_t(f.tool)]))
+        throw std::runtime_error("the recorded run swaps to a burr this review cannot: " + said);
+      tool = f.tool;
     }
     loop.stepRecorded(f.t, f.periodUs, f.device, f.button);
     writer.drain(loop);

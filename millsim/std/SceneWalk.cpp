@@ -15,10 +15,11 @@ namespace {
 
 using Visit = std::function<void(Node&, const WalkFrame&)>;
 
-void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, const Visit& visit);
+void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
+          const Visit& visit);
 
 // Every node field of n; a ClipPlane among a field's nodes clips its siblings.
-void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& clips, bool shown,
+void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
                   const Visit& visit) {
   for (Field* f : n.fields()) {
     auto* nf = dynamic_cast<NodeFieldBase*>(f);
@@ -32,21 +33,22 @@ void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& c
         const double len = glm::length(glm::dvec3(p));
         if (len > 0.0 && std::isfinite(len)) scoped.push_back(p / len);
       }
-    for (const auto& child : children) walk(*child, m, scoped, shown, visit);
+    for (const auto& child : children) walk(*child, m, scoped, shown, translucent, visit);
   }
 }
 
-void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, const Visit& visit) {
+void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
+          const Visit& visit) {
   glm::dmat4 m = parent;
   if (auto* t = dynamic_cast<Transform*>(&n)) m = parent * glm::dmat4(t->localMatrix());
-  visit(n, WalkFrame{m, &clips, shown});
-  walkChildren(n, m, clips, shown && n.showsDescendants(), visit);
+  visit(n, WalkFrame{m, &clips, shown, translucent});
+  walkChildren(n, m, clips, shown && n.showsDescendants(), translucent || n.showsDescendantsTranslucent(), visit);
 }
 
 }  // namespace
 
 void walkScene(const Scene& scene, const Visit& visit) {
-  walkChildren(*scene.root, glm::dmat4(1.0), {}, true, visit);
+  walkChildren(*scene.root, glm::dmat4(1.0), {}, true, false, visit);
 }
 
 }  // namespace millsim

@@ -22,6 +22,8 @@ struct WalkFrame {
   const std::vector<glm::dvec4>* clipPlanes = nullptr;
   // False under a node whose showsDescendants() is false: not to be drawn.
   bool shown = true;
+  // True under a node whose showsDescendantsTranslucent() is true (a visible assessment region).
+  bool translucent = false;
 };
 
 void walkScene(const Scene& scene, const std::function<void(Node&, const WalkFrame&)>& visit);

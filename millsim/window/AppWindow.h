@@ -46,6 +46,7 @@ struct HudState {
   int contacts = 0;
   double removedMm3 = 0.0;
   std::string renderer;                        // type name of the renderer in charge
+  std::string burr;                            // the burr milling, e.g. "round 0.6 mm" (key B swaps it)
   bool milling = false;                        // the milling switch
   bool swapPending = false;                    // a selected renderer has not taken over yet
   std::string status;                          // last notice (a swap, an error)
@@ -53,7 +54,7 @@ struct HudState {
 
 // Something the window asks the scene thread to do.
 struct WindowCommand {
-  enum class Kind { SelectRenderer, ToggleEnabled, ToggleMillable } kind;
+  enum class Kind { SelectRenderer, ToggleEnabled, ToggleMillable, NextBurrShape } kind;
   int index = 0;  // SelectRenderer: 0 for key 1, …
 };
 

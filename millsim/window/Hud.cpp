@@ -15,6 +15,7 @@ void drawHud(const HudState& hud, const HudExtras& extras) {
                                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings;
   if (ImGui::Begin("HUD", nullptr, flags)) {
     ImGui::Text("%s%s", hud.renderer.c_str(), hud.swapPending ? "  (swap pending)" : "");
+    if (!hud.burr.empty()) ImGui::Text("burr: %s", hud.burr.c_str());
     ImGui::Text("haptic rate  %7.0f Hz", hud.hapticRate);
     ImGui::Text("compute      %5.0f µs p50  %5.0f µs p99", hud.computeP50Us, hud.computeP99Us);
     ImGui::Text("force        %7.3f N    torque %7.4f N·m", hud.force, hud.torque);
@@ -32,7 +33,7 @@ void drawHelpLine(const HudExtras& extras) {
     keys += std::to_string(i + 1) + " " + extras.renderers[i] + "   ";
   std::string help = keys + "|  drag turn · wheel zoom · shift/middle-drag pan · PgUp/PgDn viewpoint · F frame all · "
                             "C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move cut · E force on/off · "
-                            "M millable on/off · H HUD · Esc quit";
+                            "M millable on/off · B burr shape · H HUD · Esc quit";
   if (extras.pointer)
     help += "  |  mouse tool: move = burr · left/Space = mill · right-drag turn tool · Ctrl+wheel depth · "
             "Alt/middle-drag turn view";

@@ -248,6 +248,7 @@ private:
       case SDLK_SPACE: spaceMilling_ = !spaceMilling_; break;
       case SDLK_e: commands_.push_back({WindowCommand::Kind::ToggleEnabled, 0}); break;
       case SDLK_m: commands_.push_back({WindowCommand::Kind::ToggleMillable, 0}); break;
+      case SDLK_b: commands_.push_back({WindowCommand::Kind::NextBurrShape, 0}); break;
       default:
         if (k.sym >= SDLK_1 && k.sym <= SDLK_9 && int(k.sym - SDLK_1) < int(options_.renderers.size()))
           commands_.push_back({WindowCommand::Kind::SelectRenderer, int(k.sym - SDLK_1)});

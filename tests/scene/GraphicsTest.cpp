@@ -336,3 +336,43 @@ TEST(SceneDrawer, DrawsTheBurrHeadsShape) {
     if (shape == BurrShape::InvertedCone) EXPECT_GT(bottom, top + 10);
   }
 }
+
+// A visible assessment region is drawn see-through over what is behind it
+// (issue 18, part 3); a Material's transparency blends any shape the same way.
+TEST(SceneRenderer, VisibleRegionsAreSeeThrough) {
+  auto centreOf = [](const std::string& front) {
+    ScratchDir dir;
+    LoadResult r = loadSceneFile(dir.write("t.x3d", x3d(R"(
+      <Viewpoint position="0 0 5" fieldOfView="0.8"/>
+      <Background skyColor="0 0 0"/>
+      <Shape><Appearance><Material diffuseColor="0 1 0"/></Appearance><Box size="1 1 1"/></Shape>)" + front)),
+                                 builtinRegistry());
+    EXPECT_TRUE(r.ok()) << r.report();
+    auto renderer = createSceneRenderer(*r.scene, sized(64));
+    renderer->render(std::nullopt);
+    const Image img = renderer->readPixels();
+    return img.at(32, 32);
+  };
+  const std::string redBox =
+      R"(<Transform translation="0 0 1"><Shape><Appearance><Material diffuseColor="1 0 0"/></Appearance>)"
+      R"(<Box size="0.5 0.5 0.5"/></Shape></Transform>)";
+  const auto hidden = centreOf("<ForbiddenRegion name='r'>" + redBox + "</ForbiddenRegion>");
+  EXPECT_EQ(hidden.r, 0) << "a region is not drawn by default";
+  EXPECT_GT(hidden.g, 100);
+  const auto shown = centreOf("<ForbiddenRegion name='r' visible='true'>" + redBox + "</ForbiddenRegion>");
+  EXPECT_GT(shown.r, 40) << "the region's red is drawn";
+  EXPECT_GT(shown.g, 40) << "and the green box shows through it";
+  const std::string behind = std::string(R"(<ForbiddenRegion name='r' visible='true'><Transform translation="0 0 -1">)") +
+                             R"(<Shape><Appearance><Material diffuseColor="1 0 0"/></Appearance>)" +
+                             R"(<Box size="0.5 0.5 0.5"/></Shape></Transform></ForbiddenRegion>)";
+  const auto hiddenInside = centreOf(behind);
+  EXPECT_GT(hiddenInside.r, 40) << "a region behind (or inside) an opaque shape still shows through it";
+  const auto opaque = centreOf(redBox);
+  EXPECT_GT(opaque.r, 100);
+  EXPECT_EQ(opaque.g, 0) << "an opaque shape hides what is behind";
+  std::string halfRed = redBox;
+  halfRed.replace(halfRed.find("diffuseColor=\"1 0 0\""), 20, "diffuseColor=\"1 0 0\" transparency=\"0.5\"");
+  const auto blended = centreOf(halfRed);
+  EXPECT_GT(blended.r, 40);
+  EXPECT_GT(blended.g, 40) << "Material.transparency is drawn";
+}

@@ -207,7 +207,8 @@ TEST(HapticLoop, LogRowsCarryEveryFrameAndThePeriod) {
   EXPECT_EQ(log.substr(0, log.find('\n') + 1), frameLogHeader());
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 4);
   EXPECT_NE(log.find("\n0.002,0,0.01,0,1,0,0,0,0.5,0,0,"), std::string::npos) << log;
-  EXPECT_EQ(log.substr(log.size() - 15), ",1000,Constant\n") << "period_us, then the renderer's name";
+  const std::string tail = ",1000,Constant," + toolCell(ToolGeometry{}) + "\n";
+  EXPECT_EQ(log.substr(log.size() - tail.size()), tail) << "period_us, the renderer's name, then the burr";
 }
 
 // The log ends with what the device got at the stop: zero, after the last
@@ -358,7 +359,7 @@ TEST(HapticLoop, MillsInRealTimeWhileGraphicsAndSceneThreadsRead) {
   SurfacePointRenderer renderer;
   const ToolGeometry tool{0.6e-3, 0.4e-3, 10e-3};
   LoopSettings s = settings();
-  s.tipRadius = tool.tipRadius;
+  s.tool = tool;
   HapticLoop loop(scene, renderer.compile(tool, scene), makeTrajectoryDriver(t, false), s);
   loop.publishBlocks(0, channel);
 

@@ -172,7 +172,10 @@ TEST(Review, TheRunsRendererSwapsAreMadeAgain) {
   std::string line;
   int row = 0;
   while (std::getline(in, line)) {
-    if (row++ > 150) line = line.substr(0, line.rfind(',') + 1) + "BarbicRenderer";
+    if (row++ > 150) {  // the renderer column is the last but one (the tool is the last)
+      const std::size_t toolAt = line.rfind(',');
+      line = line.substr(0, line.rfind(',', toolAt - 1) + 1) + "BarbicRenderer" + line.substr(toolAt);
+    }
     swapped += line + "\n";
   }
   const std::string review = reviewToString(scene, swapped);
@@ -293,8 +296,8 @@ TEST(Replay, LineProxyDrawnShaftStaysWithTheDeviceWhileMillingStraightDown) {
   while (std::getline(in, line)) {
     std::vector<double> v;
     std::stringstream cells(line);
-    // Every column but the last, the renderer's name.
-    for (std::string c; std::getline(cells, c, ',');) v.push_back(std::isdigit(c.back()) ? std::stod(c) : 0.0);
+    // The numbers up to the drawn orientation (the last columns are the renderer's name and the burr).
+    for (std::string c; v.size() < 23 && std::getline(cells, c, ',');) v.push_back(std::stod(c));
     ASSERT_GE(v.size(), 23u);
     const glm::dquat device(v[4], v[5], v[6], v[7]), drawn(v[19], v[20], v[21], v[22]);
     const double cosine = glm::dot(device * glm::dvec3(0, 1, 0), drawn * glm::dvec3(0, 1, 0));

@@ -56,7 +56,7 @@ double removedPressingInto(const std::string& renderer, float hardness, double s
   LoopSettings s;
   s.timing = false;
   s.logCapacity = 4;
-  s.tipRadius = kTool.tipRadius;
+  s.tool = kTool;
   const auto node = measure::makeRenderer({renderer, {}});
   HapticLoop loop(scene, node->compile(kTool, scene), makeHandDriver(hand, HandModel{}, false), s);
   for (long n = 0; n < long(seconds * 1000); ++n) {
