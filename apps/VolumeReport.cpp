@@ -1,5 +1,9 @@
 // What `millsim check` says about each VolumeObject: size, spacing, memory and
-// point-shell counts (the shells are built for the report only).
+// point-shell counts (the shells are built for the report only). Memory is
+// resident memory: the grid's allocated nodes and buffers, and each shell's
+// buffers, headroom for milling included, which it writes when it builds
+// them (PointShell::memoryBytes); not capacity reserved and never touched.
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <sstream>
@@ -22,16 +26,17 @@ std::string describeVolumes(const Scene& scene) {
         << "  dimensions " << v->dims().x << " x " << v->dims().y << " x " << v->dims().z << " voxels, voxel size "
         << std::setprecision(4) << v->voxelSize().x * 1e3 << " x " << v->voxelSize().y * 1e3 << " x "
         << v->voxelSize().z * 1e3 << " mm\n"
-        << "  active voxels " << v->activeVoxels() << ", grid memory " << std::setprecision(1)
-        << double(v->memoryBytes()) / (1024.0 * 1024.0) << " MiB\n";
+        << "  active voxels " << v->activeVoxels() << ", grid " << std::setprecision(1)
+        << double(v->memoryBytes()) / (1024.0 * 1024.0) << " MiB resident\n";
     out << "  point shell (isoValue " << std::setprecision(0) << vo->isoValue.get() << "):";
     for (int scale : {1, 2, 3}) {
       const auto t0 = std::chrono::steady_clock::now();
       PointShell shell(*v, vo->isoValue.get(), scale);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double bytes = double(shell.memoryBytes());
       out << " scale " << scale << ": " << shell.size() << " points (" << std::setprecision(0) << ms << " ms, "
-          << std::setprecision(1) << double(shell.memoryBytes()) / (1024.0 * 1024.0) << " MiB)"
-          << (scale < 3 ? ";" : "\n");
+          << std::setprecision(1) << bytes / (1024.0 * 1024.0) << " MiB resident, " << std::setprecision(0)
+          << bytes / double(std::max<std::size_t>(1, shell.size())) << " B/point)" << (scale < 3 ? ";" : "\n");
     }
   }
   return out.str();

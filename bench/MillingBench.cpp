@@ -12,10 +12,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <vector>
 
+#include <unistd.h>
+
 #include "bench/ThreadCpuTime.h"
+#include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
@@ -118,5 +122,43 @@ BENCHMARK(BM_DormantCatchUp)
     ->Iterations(3)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
+
+// The point shell's memory at scale s on the tooth phantom: bytes per point
+// by the structure's own accounting (PointShell::memoryBytes: every buffer
+// it holds, headroom for milling included) and by the process's resident set
+// (/proc/self/statm) before and after building it. Then the 2.5 mm hole of
+// BM_MillingFrame (4000 frames): the points it adds.
+long residentBytes() {
+  long pages = 0, resident = 0;
+  if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+    std::fclose(f);
+  }
+  return resident * sysconf(_SC_PAGESIZE);
+}
+
+void BM_PointShellMemory(benchmark::State& state) {
+  const int scale = int(state.range(0));
+  VoxelVolume volume = makeToothPhantom(ToothPhantomOptions{});
+  for (auto _ : state) {
+    const long before = residentBytes();
+    PointShell shell(volume, 700.f, scale);
+    const long after = residentBytes();
+    const double n = double(shell.size());
+    state.counters["points"] = n;
+    state.counters["bytes_per_point"] = double(shell.memoryBytes()) / n;
+    state.counters["rss_per_point"] = double(after - before) / n;
+    Miller miller(volume, 700.f);
+    DirtyBlocks dirty(volume.dims());
+    for (long f = 0; f < 4000; ++f) {
+      miller.stamp(burrAt(f), kBurr, dirty);
+      shell.update(volume, dirty);
+      dirty.clear();
+    }
+    state.counters["hole_adds_points"] = double(shell.size()) - n;
+    state.counters["rss_per_point_after_hole"] = double(residentBytes() - before) / n;
+  }
+}
+BENCHMARK(BM_PointShellMemory)->Arg(1)->Arg(3)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

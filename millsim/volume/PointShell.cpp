@@ -45,7 +45,8 @@ glm::dvec3 PointShell::materialCentre(const Fine& fine, int I, int J, int K) con
   return n > 0 ? sum / double(n) : centre;
 }
 
-PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
+PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale, std::size_t headroomPerPoint,
+                       std::size_t minHeadroom)
     : volume_(&volume), iso_(isoValue), scale_(scale) {
   if (scale < 1) throw VolumeError("point shell scale must be a positive integer, got " + std::to_string(scale));
   coarseDims_ = (volume.dims() + scale - 1) / scale;
@@ -60,10 +61,9 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
         supers_[std::size_t(s)].buckets.push_back((bz * bucketDims_.y + by) * bucketDims_.x + bx);
       }
 
-  // Reserve room for every surface point a bucket could ever hold if it holds
-  // material now: milling only removes material, so no other bucket can gain points.
+  // Only a bucket that holds material now can ever hold points (milling only
+  // removes material): mark those.
   auto acc = volume.grid().getConstAccessor();
-  const int bucketVoxels = int(kMaxBucketPoints);
   for (auto leaf = volume.grid().tree().cbeginLeaf(); leaf; ++leaf) {
     if (leaf->onVoxelCount() == 0) continue;
     const openvdb::Coord o = leaf->origin();
@@ -73,21 +73,45 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale)
         for (int dx = 0; dx < 2; ++dx) {
           const glm::ivec3 b = glm::ivec3(o.x() + dx * 7, o.y() + dy * 7, o.z() + dz * 7) / scale / kBucket;
           if (glm::any(glm::greaterThanEqual(b, bucketDims_))) continue;
-          auto& pts = buckets_[std::size_t((b.z * bucketDims_.y + b.y) * bucketDims_.x + b.x)].points;
-          if (pts.capacity() == 0) {
-            pts.reserve(std::size_t(bucketVoxels));
-            buckets_[std::size_t((b.z * bucketDims_.y + b.y) * bucketDims_.x + b.x)].cells.reserve(
-                std::size_t(bucketVoxels));
-          }
+          buckets_[std::size_t((b.z * bucketDims_.y + b.y) * bucketDims_.x + b.x)].material = true;
         }
   }
-  for (int b = 0; b < int(buckets_.size()); ++b) rebuildBucket(acc, b);
+  for (auto& s : supers_) s.buckets.shrink_to_fit();
+  // Scratch, written now so that it is resident before the haptic thread uses
+  // it. A merged bucket can list two points per voxel before the cap. The
+  // coarse copy of a region is at most 1/s³ of its fine copy.
+  merged_.resize(2 * kMaxBucketPoints);
+  mergedCells_.resize(2 * kMaxBucketPoints);
+  scratchEdge_ = std::min(kScratchEdge, kTileEdge + 6 * scale + 2);
+  const std::size_t scratchVoxels = std::size_t(scratchEdge_) * std::size_t(scratchEdge_) * std::size_t(scratchEdge_);
+  fineScratch_.resize(scratchVoxels);
+  coarseScratch_.resize(scratchVoxels / std::size_t(scale * scale * scale));
+  std::size_t materialBuckets = 0;
+  for (const Bucket& b : buckets_) materialBuckets += b.material;
+  order_.resize(materialBuckets);
+  // The points, bucket after bucket, tight (growing as they come: this is the
+  // scene thread), then moved into an array of exactly their number plus the
+  // headroom, written through.
+  for (int b = 0; b < int(buckets_.size()); ++b) {
+    const std::size_t n = computeBucket(acc, b);
+    Bucket& bucket = buckets_[std::size_t(b)];
+    bucket.size = std::uint16_t(n);
+    count_ += n;
+    for (std::size_t i = 0; i < n; ++i) bucket.box.add(merged_[i].position);
+    bucket.begin = std::uint32_t(points_.size());
+    points_.insert(points_.end(), merged_.begin(), merged_.begin() + bucket.size);
+    cells_.insert(cells_.end(), mergedCells_.begin(), mergedCells_.begin() + bucket.size);
+    bucket.capacity = bucket.size;
+  }
+  tail_ = points_.size();
+  const std::size_t slots = count_ + std::max(count_ * headroomPerPoint, minHeadroom);
+  std::vector<ShellPoint> allPoints;
+  std::vector<std::uint16_t> allCells;
+  allPoints.reserve(slots), allCells.reserve(slots);  // exactly: nothing reserved unwritten
+  allPoints.assign(points_.begin(), points_.end()), allCells.assign(cells_.begin(), cells_.end());
+  allPoints.resize(slots), allCells.resize(slots);
+  points_.swap(allPoints), cells_.swap(allCells);
   for (int s = 0; s < int(supers_.size()); ++s) refreshSuper(s);
-  fineScratch_.reserve(kScratchVoxels);
-  coarseScratch_.reserve(kScratchVoxels);
-  // Before the cap a merged bucket can list two points per voxel.
-  merged_.reserve(2 * kMaxBucketPoints);
-  mergedCells_.reserve(2 * kMaxBucketPoints);
 }
 
 // Density of the coarse voxel (I, J, K): the densest of the s³ fine voxels it
@@ -109,33 +133,82 @@ float PointShell::coarse(const Accessor& acc, int I, int J, int K) const {
 }
 
 template <class Accessor>
-void PointShell::rebuildBucket(const Accessor& acc, int b) {
-  Bucket& bucket = buckets_[std::size_t(b)];
-  count_ -= bucket.points.size();
-  bucket.points.clear();
-  bucket.cells.clear();
-  bucket.box = Aabb{};
-  if (bucket.points.capacity() == 0) return;  // never held material
-  const int bx = b % bucketDims_.x, by = (b / bucketDims_.x) % bucketDims_.y, bz = b / (bucketDims_.x * bucketDims_.y);
-  const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBucket;
-  const glm::ivec3 hi = glm::min(lo + kBucket, coarseDims_);
-  for (int K = lo.z; K < hi.z; ++K)
-    for (int J = lo.y; J < hi.y; ++J)
-      for (int I = lo.x; I < hi.x; ++I) {
-        const float v = coarse(acc, I, J, K);
-        if (v <= iso_) continue;
-        const float n[6] = {coarse(acc, I - 1, J, K), coarse(acc, I + 1, J, K), coarse(acc, I, J - 1, K),
-                            coarse(acc, I, J + 1, K), coarse(acc, I, J, K - 1), coarse(acc, I, J, K + 1)};
-        ShellPoint p[2];
-        const auto fine = [&](int x, int y, int z) { return acc.getValue(openvdb::Coord(x, y, z)); };
-        const int m = makePoints(fine, v, n, I, J, K, p);
-        for (int q = 0; q < m && bucket.points.size() < kMaxBucketPoints; ++q) {
-          bucket.points.push_back(p[q]);
-          bucket.cells.push_back(std::uint16_t(((K - lo.z) * kBucket + (J - lo.y)) * kBucket + (I - lo.x)));
-          bucket.box.add(p[q].position);
+std::size_t PointShell::computeBucket(const Accessor& acc, int b) {
+  const Bucket& bucket = buckets_[std::size_t(b)];
+  std::size_t n = 0;
+  if (bucket.material) {  // else it never held material: no points, ever
+    const int bx = b % bucketDims_.x, by = (b / bucketDims_.x) % bucketDims_.y,
+              bz = b / (bucketDims_.x * bucketDims_.y);
+    const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBucket;
+    const glm::ivec3 hi = glm::min(lo + kBucket, coarseDims_);
+    for (int K = lo.z; K < hi.z; ++K)
+      for (int J = lo.y; J < hi.y; ++J)
+        for (int I = lo.x; I < hi.x; ++I) {
+          const float v = coarse(acc, I, J, K);
+          if (v <= iso_) continue;
+          const float nb[6] = {coarse(acc, I - 1, J, K), coarse(acc, I + 1, J, K), coarse(acc, I, J - 1, K),
+                               coarse(acc, I, J + 1, K), coarse(acc, I, J, K - 1), coarse(acc, I, J, K + 1)};
+          ShellPoint p[2];
+          const auto fine = [&](int x, int y, int z) { return acc.getValue(openvdb::Coord(x, y, z)); };
+          const int m = makePoints(fine, v, nb, I, J, K, p);
+          for (int q = 0; q < m && n < kMaxBucketPoints; ++q) {
+            merged_[n] = p[q];
+            mergedCells_[n++] = std::uint16_t(((K - lo.z) * kBucket + (J - lo.y)) * kBucket + (I - lo.x));
+          }
         }
-      }
-  count_ += bucket.points.size();
+  }
+  return n;
+}
+
+void PointShell::store(int b, std::size_t n, bool tight) {
+  Bucket& bucket = buckets_[std::size_t(b)];
+  count_ -= bucket.size;
+  n = std::min(n, kMaxBucketPoints);
+  if (n > bucket.capacity) {
+    // Outgrown: a new range at the free end, with slack for more milling.
+    std::size_t want = tight ? n : std::min(kMaxBucketPoints, n + n / 4 + 16);
+    if (points_.size() - tail_ < want) {
+      bucket.size = 0;  // being replaced: compaction need not keep its points
+      compact();
+      const std::size_t room = points_.size() - tail_;
+      if (room < want) want = std::min(n, room);
+      if (want < n) droppedPoints_ += n - want, n = want;  // the cap
+    }
+    bucket.begin = std::uint32_t(tail_);
+    bucket.capacity = std::uint16_t(want);
+    tail_ += want;
+    ++relocations_;
+  }
+  std::copy(merged_.begin(), merged_.begin() + std::ptrdiff_t(n), points_.begin() + bucket.begin);
+  std::copy(mergedCells_.begin(), mergedCells_.begin() + std::ptrdiff_t(n), cells_.begin() + bucket.begin);
+  bucket.size = std::uint16_t(n);
+  count_ += n;
+  bucket.box = Aabb{};
+  for (std::size_t i = 0; i < n; ++i) bucket.box.add(merged_[i].position);
+}
+
+void PointShell::compact() {
+  std::size_t m = 0;
+  for (int b = 0; b < int(buckets_.size()); ++b)
+    if (buckets_[std::size_t(b)].material) order_[m++] = b;
+  // Array order (ranges never overlap), so each bucket only ever slides down.
+  std::sort(order_.begin(), order_.begin() + std::ptrdiff_t(m), [&](int a, int b) {
+    const std::uint32_t x = buckets_[std::size_t(a)].begin, y = buckets_[std::size_t(b)].begin;
+    return x < y || (x == y && a < b);
+  });
+  std::size_t cursor = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    Bucket& bucket = buckets_[std::size_t(order_[i])];
+    if (bucket.size != 0 && bucket.begin != cursor) {
+      std::copy(points_.begin() + bucket.begin, points_.begin() + bucket.begin + bucket.size, points_.begin() + std::ptrdiff_t(cursor));
+      std::copy(cells_.begin() + bucket.begin, cells_.begin() + bucket.begin + bucket.size, cells_.begin() + std::ptrdiff_t(cursor));
+    }
+    bucket.begin = std::uint32_t(cursor);
+    bucket.capacity = bucket.size;
+    cursor += bucket.size;
+  }
+  tail_ = cursor;
+  ++compactions_;
 }
 
 // Voxel centres lie up to a voxel inside the surface they stand for; left
@@ -197,7 +270,11 @@ void PointShell::refreshSuperOfBucket(int b) {
 
 void PointShell::rebuildAll(const VoxelVolume& volume) {
   auto acc = volume.grid().getConstAccessor();
-  for (int b = 0; b < int(buckets_.size()); ++b) rebuildBucket(acc, b);
+  // A fresh tight layout from the start of the array (each bucket is
+  // recomputed before it is written, so overwriting old ranges loses nothing).
+  for (Bucket& b : buckets_) b.begin = 0, b.size = 0, b.capacity = 0;
+  count_ = 0, tail_ = 0;
+  for (int b = 0; b < int(buckets_.size()); ++b) store(b, computeBucket(acc, b), true);
   for (int s = 0; s < int(supers_.size()); ++s) refreshSuper(s);
 }
 
@@ -210,7 +287,7 @@ int PointShell::update(const VoxelVolume& volume, const DirtyBlocks& dirty) {
   // fits (edge + 6s + 2 fine voxels with the stencils' margins) and update
   // the cubes that hold a marked block. The volume is already in its final
   // state, so cube by cube gives what one pass over the box would.
-  const int edge = (int(std::cbrt(double(kScratchVoxels)) + 0.5) - 6 * scale_ - 2) / 8 * 8;
+  const int edge = (scratchEdge_ - 6 * scale_ - 2) / 8 * 8;
   if (edge >= 8) {
     const glm::ivec3 lo = dirty.voxelLo(), hi = dirty.voxelHi();
     bool fits = true;
@@ -243,10 +320,7 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   // walks up to s voxels from its block and reads one beyond (trilinear).
   const glm::ivec3 fLo = eLo * scale_ - 1, fDim = eDim * scale_ + 2;
   const std::size_t fineCount = std::size_t(fDim.x) * fDim.y * fDim.z;
-  if (fineCount > fineScratch_.capacity() || std::size_t(eDim.x) * eDim.y * eDim.z > coarseScratch_.capacity())
-    return false;
-  fineScratch_.resize(fineCount);  // within capacity: no allocation
-  coarseScratch_.resize(std::size_t(eDim.x) * eDim.y * eDim.z);
+  if (fineCount > fineScratch_.size() || std::size_t(eDim.x) * eDim.y * eDim.z > coarseScratch_.size()) return false;
 
   // Dense copy of F, leaf by leaf: one tree lookup per 8³ block instead of one per voxel.
   const auto& tree = volume.grid().tree();
@@ -312,25 +386,26 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
       for (int bx = bLo.x; bx <= bHi.x; ++bx) {
         const int b = (bz * bucketDims_.y + by) * bucketDims_.x + bx;
         Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.points.capacity() == 0) continue;  // never held material
+        if (!bucket.material) continue;  // never held material
         const glm::ivec3 rLo = glm::max(glm::ivec3(bx, by, bz) * kBucket, cLo);
         const glm::ivec3 rHi = glm::min(glm::ivec3(bx, by, bz) * kBucket + kBucket - 1, cHi);
         const glm::ivec3 bo = glm::ivec3(bx, by, bz) * kBucket;
         auto cellOf = [&](int I, int J, int K) {
           return std::uint16_t(((K - bo.z) * kBucket + (J - bo.y)) * kBucket + (I - bo.x));
         };
-        merged_.clear();
-        mergedCells_.clear();
+        std::size_t merged = 0;  // points in merged_ so far
         std::size_t old = 0;
-        const std::size_t nOld = bucket.points.size();
+        const std::size_t nOld = bucket.size;
+        const ShellPoint* oldPoints = points_.data() + bucket.begin;
+        const std::uint16_t* oldCells = cells_.data() + bucket.begin;
         auto flushOldBefore = [&](int cell) {
           for (; old < nOld; ++old) {
-            const int c = bucket.cells[old];
+            const int c = oldCells[old];
             if (c >= cell) break;
             const glm::ivec3 at = bo + glm::ivec3(c % kBucket, (c / kBucket) % kBucket, c / (kBucket * kBucket));
             if (glm::all(glm::greaterThanEqual(at, rLo)) && glm::all(glm::lessThanEqual(at, rHi))) continue;  // recomputed
-            merged_.push_back(bucket.points[old]);
-            mergedCells_.push_back(std::uint16_t(c));
+            merged_[merged] = oldPoints[old];
+            mergedCells_[merged++] = std::uint16_t(c);
           }
         };
         for (int K = rLo.z; K <= rHi.z; ++K)
@@ -345,20 +420,14 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
               if (m == 0) continue;
               flushOldBefore(cellOf(I, J, K));
               for (int q = 0; q < m; ++q) {
-                merged_.push_back(p[q]);
-                mergedCells_.push_back(cellOf(I, J, K));
+                merged_[merged] = p[q];
+                mergedCells_[merged++] = cellOf(I, J, K);
               }
             }
         flushOldBefore(std::numeric_limits<int>::max());
-        count_ -= nOld;
-        // Within capacity, so no allocation; the same cap as a rebuild (the tail of a bucket
-        // with more points than voxels, which real data does not reach, is dropped by both).
-        const std::size_t keep = std::min(merged_.size(), kMaxBucketPoints);
-        bucket.points.assign(merged_.begin(), merged_.begin() + std::ptrdiff_t(keep));
-        bucket.cells.assign(mergedCells_.begin(), mergedCells_.begin() + std::ptrdiff_t(keep));
-        count_ += bucket.points.size();
-        bucket.box = Aabb{};
-        for (const ShellPoint& p : bucket.points) bucket.box.add(p.position);
+        // The same cap as a rebuild (the tail of a bucket with more points than
+        // voxels, which real data does not reach, is dropped by both).
+        store(b, merged, false);
         refreshSuperOfBucket(b);
         ++rebuilt;
       }
@@ -371,7 +440,7 @@ void PointShell::refreshSuper(int s) {
   sup.count = 0;
   for (int b : sup.buckets) {
     sup.box.add(buckets_[std::size_t(b)].box);
-    sup.count += buckets_[std::size_t(b)].points.size();
+    sup.count += buckets_[std::size_t(b)].size;
   }
 }
 
@@ -389,7 +458,7 @@ int PointShell::update(const VoxelVolume& volume, const std::vector<BlockOrigin>
     for (int i = 0; i < nMarked; ++i)
       if (marked[i] == b) return;
     if (nMarked < kMaxMarked) marked[nMarked++] = b;
-    rebuildBucket(acc, b);
+    store(b, computeBucket(acc, b), false);
     ++rebuilt;
   };
   for (const BlockOrigin& o : dirty) {
@@ -419,10 +488,10 @@ std::vector<ShellPoint> PointShell::points() const {
 }
 
 std::size_t PointShell::memoryBytes() const {
-  std::size_t bytes = buckets_.capacity() * sizeof(Bucket) + supers_.capacity() * sizeof(Super);
-  for (const auto& b : buckets_) bytes += b.points.capacity() * sizeof(ShellPoint);
+  std::size_t bytes = sizeof(PointShell) + buckets_.capacity() * sizeof(Bucket) + supers_.capacity() * sizeof(Super);
   for (const auto& s : supers_) bytes += s.buckets.capacity() * sizeof(int);
-  for (const auto& b : buckets_) bytes += b.cells.capacity() * sizeof(std::uint16_t);
+  bytes += points_.capacity() * sizeof(ShellPoint) + cells_.capacity() * sizeof(std::uint16_t) +
+           order_.capacity() * sizeof(int);
   bytes += (fineScratch_.capacity() + coarseScratch_.capacity()) * sizeof(float) + merged_.capacity() * sizeof(ShellPoint) +
            mergedCells_.capacity() * sizeof(std::uint16_t);
   return bytes;

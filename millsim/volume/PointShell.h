@@ -15,8 +15,24 @@
 // milling, update() recomputes only the coarse voxels a stamp can have
 // affected (the changed voxels' box, widened by the neighbour and normal
 // stencils) from one dense copy of that box, and merges them into the buckets
-// they fall in, in place: capacity for every bucket that holds material and
-// for the scratch copies is reserved up front, so an update never allocates.
+// they fall in. An update never allocates.
+//
+// Memory: all points live in one array (points_, with each point's cell in
+// cells_), a bucket is a range of it [begin, begin + capacity) of which it
+// uses `size`. The array is laid out tight at build and followed by headroom
+// for milling (kHeadroomPerPoint slots per point built, at least
+// kMinHeadroom): milling removes material but exposes new surface, so a
+// bucket can grow, and a bucket inside the material, with no points at build,
+// can gain them. A bucket that outgrows its range moves to the headroom's
+// free end with some slack (its old range is left as a hole). When the free
+// end is used up, the array is compacted in place (every bucket slid down in
+// array order, holes and slack returned to the free end: O(points), no
+// allocation, counted by compactions()). Only if the points then still do not
+// fit does a bucket keep what fits and drop the rest, counted by
+// droppedPoints() — the documented cap; the shell is then no longer what a
+// rebuild gives until the owner builds a new one. Every buffer is written
+// when it is made, so memoryBytes() is resident memory, not reserved
+// capacity, and the haptic thread never page-faults into the headroom.
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -60,12 +76,28 @@ public:
   // sheet voxel has two, but its outside neighbours have none).
   static constexpr std::size_t kMaxBucketPoints = std::size_t(kBucket) * kBucket * kBucket;
   static constexpr int kSuper = 4;   // buckets per super-bucket edge
+  // Headroom for milling, in point slots: kHeadroomPerPoint per point at
+  // build, at least kMinHeadroom (room to move a few full buckets).
+  static constexpr std::size_t kHeadroomPerPoint = 2;
+  static constexpr std::size_t kMinHeadroom = 8 * kMaxBucketPoints;
 
-  PointShell(const VoxelVolume& volume, float isoValue, int scale);
+  // headroomPerPoint and minHeadroom: the headroom's size (tests shrink it).
+  PointShell(const VoxelVolume& volume, float isoValue, int scale, std::size_t headroomPerPoint = kHeadroomPerPoint,
+             std::size_t minHeadroom = kMinHeadroom);
 
   int scale() const { return scale_; }
   std::size_t size() const { return count_; }
+  // Bytes of every buffer the shell holds, headroom and scratch included; all
+  // of it is written at construction, so this is what the shell keeps resident.
   std::size_t memoryBytes() const;
+  // Point slots: held points plus headroom (free end, holes and slack).
+  std::size_t capacity() const { return points_.size(); }
+  std::size_t headroom() const { return points_.size() - count_; }
+  // How often a growing bucket moved to the free end, the array was
+  // compacted, and points were dropped because the headroom was used up.
+  std::size_t relocations() const { return relocations_; }
+  std::size_t compactions() const { return compactions_; }
+  std::size_t droppedPoints() const { return droppedPoints_; }
 
   // Rebuilds the buckets affected by changes in the given 8³ voxel blocks
   // (leaf origins, as DirtyBlocks reports them). Returns the number of buckets rebuilt.
@@ -84,7 +116,7 @@ public:
       if (s.count == 0 || !overlaps(s.box)) continue;
       for (int b : s.buckets) {
         const Bucket& bucket = buckets_[std::size_t(b)];
-        if (!bucket.points.empty() && overlaps(bucket.box)) n += bucket.points.size();
+        if (bucket.size != 0 && overlaps(bucket.box)) n += bucket.size;
       }
     }
     return n;
@@ -95,9 +127,9 @@ public:
       if (s.count == 0 || !overlaps(s.box)) continue;
       for (int b : s.buckets) {
         const Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.points.empty() || !overlaps(bucket.box)) continue;
-        for (const ShellPoint& p : bucket.points)
-          if (pred(p)) return true;
+        if (bucket.size == 0 || !overlaps(bucket.box)) continue;
+        for (const ShellPoint *p = first(bucket), *end = p + bucket.size; p != end; ++p)
+          if (pred(*p)) return true;
       }
     }
     return false;
@@ -110,25 +142,29 @@ public:
       if (s.count == 0 || !overlaps(s.box)) continue;
       for (int b : s.buckets) {
         const Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.points.empty() || !overlaps(bucket.box)) continue;
-        for (const ShellPoint& p : bucket.points) visit(p);
+        if (bucket.size == 0 || !overlaps(bucket.box)) continue;
+        for (const ShellPoint *p = first(bucket), *end = p + bucket.size; p != end; ++p) visit(*p);
       }
     }
   }
   // Every point, bucket by bucket (the brute-force path, for comparison).
   template <class Visit> void forEach(Visit&& visit) const {
     for (const Bucket& b : buckets_)
-      for (const ShellPoint& p : b.points) visit(p);
+      for (const ShellPoint *p = first(b), *end = p + b.size; p != end; ++p) visit(*p);
   }
   // All points in a stable order (bucket order, then scan order): for tests.
   std::vector<ShellPoint> points() const;
 
 private:
+  // Points [begin, begin + size) of points_ (cells_ holds each one's coarse
+  // voxel within the bucket, (k·8 + j)·8 + i); the range is `capacity` long.
   struct Bucket {
-    std::vector<ShellPoint> points;
-    std::vector<std::uint16_t> cells;  // per point: its coarse voxel within the bucket, (k·8 + j)·8 + i
     Aabb box;
+    std::uint32_t begin = 0;
+    std::uint16_t size = 0, capacity = 0;
+    bool material = false;  // held material at build: only such a bucket can ever hold points
   };
+  const ShellPoint* first(const Bucket& b) const { return points_.data() + b.begin; }
   struct Super {
     std::vector<int> buckets;
     Aabb box;
@@ -150,7 +186,13 @@ private:
   // From `at` (fine index units, inside) out along `outward` to the iso-surface
   // of the trilinear fine field, at most s fine voxels away.
   template <class Fine> glm::dvec3 ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward) const;
-  template <class Accessor> void rebuildBucket(const Accessor& acc, int b);
+  // Recomputes bucket b's points from the voxels into merged_; returns how many.
+  template <class Accessor> std::size_t computeBucket(const Accessor& acc, int b);
+  // Makes merged_[0, n) bucket b's points: in its range if they fit, else in
+  // a new one at the free end (tight: exactly n long, for a fresh layout).
+  void store(int b, std::size_t n, bool tight);
+  // Slides every bucket down in array order, ranges cut to their size.
+  void compact();
   void refreshSuper(int s);
   void refreshSuperOfBucket(int b);
   bool updateRegion(const VoxelVolume& volume, glm::ivec3 voxelLo, glm::ivec3 voxelHi, int& rebuilt);
@@ -164,8 +206,18 @@ private:
   std::vector<Bucket> buckets_;
   std::vector<Super> supers_;
   std::size_t count_ = 0;
+  std::vector<ShellPoint> points_;    // every bucket's range, then the free end from tail_
+  std::vector<std::uint16_t> cells_;  // parallel to points_
+  std::size_t tail_ = 0;
+  std::vector<int> order_;            // compact()'s scratch: the buckets that hold material
+  std::size_t relocations_ = 0, compactions_ = 0, droppedPoints_ = 0;
   // Scratch for updateRegion: dense fine values, coarse values, a merged bucket.
-  static constexpr std::size_t kScratchVoxels = 64 * 64 * 64;
+  // The fine copy is scratchEdge_³ voxels: kTileEdge³ plus the stencils'
+  // margins (6s + 2), at most kScratchEdge³. One stamp of a burr up to about
+  // 1.5 mm (at 0.1 mm voxels) fits; larger boxes (a dormant shell catching
+  // up) are covered by cubes of kTileEdge (fewer past s = 5).
+  static constexpr int kScratchEdge = 64, kTileEdge = 32;
+  int scratchEdge_;
   std::vector<float> fineScratch_, coarseScratch_;
   std::vector<ShellPoint> merged_;
   std::vector<std::uint16_t> mergedCells_;

@@ -16,6 +16,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "millsim/renderers/BarbicRenderer.h"
+#include "millsim/volume/Milling.h"
+#include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
 
@@ -124,6 +126,28 @@ TEST(MillingAllocHead, TaperedBurrFramesAllocateNothing) {
   counting = false;
   EXPECT_GT(removed, 0.0) << "the burr must cut, or this tests nothing";
   EXPECT_EQ(allocations.load(), 0) << "allocations in 2000 milling frames with a taper burr";
+}
+
+// Milling that outgrows the shell's headroom (made small here): the updates
+// that move buckets, compact the array and finally drop points at the cap
+// allocate nothing either.
+TEST(MillingAllocShell, OutgrownHeadroomAllocatesNothing) {
+  VoxelVolume volume = makeToothPhantom(ToothPhantomOptions{});
+  PointShell shell(volume, 700.f, 1, 0, 2 * PointShell::kMaxBucketPoints);
+  Miller miller(volume, 700.f);
+  DirtyBlocks dirty(volume.dims());
+  allocations = 0;
+  for (long f = 0; f < 4000 && shell.droppedPoints() == 0; ++f) {
+    const double a = 2.0 * M_PI * double(f % 400) / 400.0;
+    miller.stamp({0.4e-3 * std::cos(a), 9.9e-3 - 2.5e-3 * double(f) / 4000.0, 0.4e-3 * std::sin(a)}, 0.6e-3, dirty);
+    counting = true;
+    shell.update(volume, dirty);
+    counting = false;
+    dirty.clear();
+  }
+  EXPECT_GT(shell.compactions(), 0u) << "the headroom was never used up, or this tests nothing";
+  EXPECT_GT(shell.droppedPoints(), 0u) << "the cap was never reached, or this tests nothing";
+  EXPECT_EQ(allocations.load(), 0) << "allocations in point-shell updates past the headroom";
 }
 
 }  // namespace
