@@ -75,9 +75,19 @@ void run(benchmark::State& state, const HapticsRendererNode& renderer, double fe
 void BM_LineProxy(benchmark::State& state) {
   LineProxyRenderer r;
   r.vertexCount.set(int(state.range(0)) + 1);  // the paper counts shaft vertices; +1 for the burr centre
-  run(state, r, 0.0);
+  run(state, r, kTool.tipRadius);  // #1 feels the burr's surface (feelBurrSurface, the default)
 }
 BENCHMARK(BM_LineProxy)->Arg(50)->Arg(100)->Arg(250)->Arg(500)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+// #1's tip model at the paper's 51 vertices, in one run: 0 = the paper's
+// centre vertex (felt at the burr centre), 1 = the burr's surface (BurrField).
+void BM_LineProxyTipModel(benchmark::State& state) {
+  LineProxyRenderer r;
+  const bool surface = state.range(0) != 0;
+  r.feelBurrSurface.set(surface);
+  run(state, r, surface ? kTool.tipRadius : 0.0);
+}
+BENCHMARK(BM_LineProxyTipModel)->ArgName("burrSurface")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_SurfacePoint(benchmark::State& state) {
   SurfacePointRenderer r;

@@ -87,8 +87,12 @@ double fieldValue(const HapticsRendererNode& n, const std::vector<std::string>& 
   return fallback;
 }
 
+// `proxyRadius` (Proxy): how far from the surface the proxy is held — 0 for
+// the paper's centre vertex, the burr radius for a proxy that feels the burr's
+// surface (LineProxyRenderer's default, feelBurrSurface).
 Reference reference(ReferenceKind kind, const Sdf& f, const ProbePose& pp, const ToolGeometry& tool, double k,
-                    int sphereQuadrature = 4000, int sliceQuadrature = 200, int ringQuadrature = 32) {
+                    double proxyRadius = 0.0, int sphereQuadrature = 4000, int sliceQuadrature = 200,
+                    int ringQuadrature = 32) {
   Reference ref;
   const glm::dvec3 c = pp.device.position, dir = pp.device.shaftDirection();
   // The burr touching the exact surface on the approach path (drawn tool, coupling).
@@ -96,7 +100,7 @@ Reference reference(ReferenceKind kind, const Sdf& f, const ProbePose& pp, const
   const glm::dvec3 touching = entryAlong(f, pp.start, c, tool.tipRadius);
   ref.drawn = touching;
   if (kind == ReferenceKind::Proxy) {
-    const glm::dvec3 proxy = entryAlong(f, pp.start, c, 0.0);
+    const glm::dvec3 proxy = entryAlong(f, pp.start, c, proxyRadius);
     ref.force = k * (proxy - c);
     // The shaft from the tip proxy: its deepest point is the probe, and its
     // proxy the closest surface point (eq. 7–11 at the exact intersection).
@@ -242,6 +246,10 @@ std::vector<AccuracyRow> measureAccuracy(const RendererSpec& spec, double h, con
   // The reference's spring: the declared stiffness field's value (1000 N/m if none is declared).
   const double k = traits.stiffnessField.empty() ? 1000.0 : fieldValue(*node, {traits.stiffnessField}, 1000.0);
   const double tipOffset = contactOffset(*node, tool, h), shaftOffset = tipOffset * tool.shaftRadius / tool.tipRadius;
+  // A proxy renderer felt about a burr radius above the surface holds its
+  // proxy against the surface dilated by the burr (the radius, not the
+  // measured offset, which is only resolved to 0.01 h).
+  const double proxyRadius = tipOffset > 0.5 * tool.tipRadius ? tool.tipRadius : 0.0;
   std::vector<AccuracyRow> rows;
   Samples all;
   for (const std::string& name : cfg.scenes) {
@@ -249,7 +257,7 @@ std::vector<AccuracyRow> measureAccuracy(const RendererSpec& spec, double h, con
     const Sdf& f = scene->shape.distance;
     Samples s;
     for (const ProbePose& pp : poses(name, h, cfg, tipOffset, shaftOffset)) {
-      const Reference ref = reference(kind, f, pp, tool, k);
+      const Reference ref = reference(kind, f, pp, tool, k, proxyRadius);
       if (!ref.valid) continue;
       ++s.poses;
       auto algorithm = node->compile(tool, *scene->scene);

@@ -24,12 +24,14 @@ public:
     double k;
     double feedResistance;
     ToolGeometry tool;
+    bool burrSurface;  // the tip proxy keeps the burr's surface out (else the paper's centre vertex)
   };
 
   LineProxyAlgorithm(const Params& p, int proxyIterations)
       : p_(p),
-        tip_(ProxyPoint::Params{proxyIterations, 2.0}),
+        tip_(ProxyPoint::Params{proxyIterations, 2.0, p.burrSurface, p.burrSurface}),
         shaft_(ProxyPoint::Params{proxyIterations, 2.0}),
+        burr_(p.tool.tipRadius),
         before_(std::size_t(p.vertices)),
         after_(std::size_t(p.vertices)) {
     // Shaft vertices inside the burr sphere are the burr's to feel: one there
@@ -78,10 +80,22 @@ public:
     const glm::dvec3 c = device.position;
     const glm::dvec3 dir = device.shaftDirection();
 
-    // §4.2 and eq. 6: the burr centre vertex and its proxy.
-    tip_.update(scene, c);
+    // §4.2 and eq. 6: the burr centre vertex and its proxy. By default the
+    // proxy is held against the scene dilated by the burr sphere (BurrField),
+    // so the burr's surface, not its centre, meets the material; the paper's
+    // variant holds the centre vertex itself on the surface.
+    burr_.bind(scene);
+    if (p_.burrSurface) tip_.update(burr_, c);
+    else tip_.update(scene, c);
     const bool tipContact = tip_.inContact();
     const glm::dvec3 proxyPoint = tipContact ? tip_.position() : c;
+    // The outward contact normal at the tip proxy: where the burr touches
+    // (BurrField), or at the centre vertex's proxy (paper).
+    glm::dvec3 tipNormal(0.0);
+    if (tipContact) {
+      tipNormal = p_.burrSurface ? burr_.outwardNormal(proxyPoint) : scene.outwardNormal(proxyPoint);
+      if (p_.burrSurface && tipNormal == glm::dvec3(0.0) && glm::length(proxyPoint - c) > 0.0) tipNormal = glm::normalize(proxyPoint - c);
+    }
     if (tipContact) {
       out.force = p_.k * (proxyPoint - c);
       out.hasProxy = true;
@@ -128,8 +142,10 @@ public:
     }
 
     // §4.5, eq. 12–13: draw the tool offset by the radii along the normals.
+    // With BurrField the proxy already is the burr's centre; the paper's
+    // centre vertex sits on the surface and the burr is drawn a radius out.
     glm::dvec3 drawTip = c;
-    if (tipContact) drawTip = proxyPoint + scene.outwardNormal(proxyPoint) * p_.tool.tipRadius;
+    if (tipContact) drawTip = p_.burrSurface ? proxyPoint : proxyPoint + tipNormal * p_.tool.tipRadius;
     glm::dvec3 drawDir = dir;
     if (shaftContact_) {
       const glm::dvec3 ipOffset = out.intersection + scene.outwardNormal(out.intersection) * p_.tool.shaftRadius;
@@ -151,7 +167,7 @@ public:
     // Depth is measured from the current tangent position, so when the
     // proxy follows the receding surface the burr does not advance twice.
     if (tipContact && in.milling) {
-      const glm::dvec3 n = scene.outwardNormal(proxyPoint);
+      const glm::dvec3 n = tipNormal;
       const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
       // Harder tissue at the burr's leading point gives way more slowly.
       const double hardness =
@@ -241,6 +257,7 @@ private:
   int firstShaftVertex_ = 1;  // the first vertex above the burr sphere
   ProxyPoint tip_;
   ProxyPoint shaft_;
+  BurrField burr_;  // the scene dilated by the burr sphere (p_.burrSurface)
   glm::dvec3 prevTip_{0.0};
   bool cutting_ = false;        // the burr cut last frame, at cutCentre_
   glm::dvec3 cutCentre_{0.0};
@@ -269,7 +286,8 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
                              "or SurfacePointRenderer or BarbicRenderer");
   return std::make_unique<LineProxyAlgorithm>(
       LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
-                                 double(springConstant.get()), double(feedResistance.get()), tool},
+                                 double(springConstant.get()), double(feedResistance.get()), tool,
+                                 feelBurrSurface.get()},
       proxyIterations.get());
 }
 

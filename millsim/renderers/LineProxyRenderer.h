@@ -27,6 +27,10 @@ public:
   SFInt32 proxyIterations{this, "proxyIterations", Access::InputOutput, 6,
                           "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::closed(1, 100)};
 
+  SFBool feelBurrSurface{this, "feelBurrSurface", Access::InitializeOnly, true,
+                         "Hold the burr's surface out of material (its centre's proxy on the scene dilated by "
+                         "tipRadius); false: the paper's centre vertex, felt only once the centre is inside."};
+
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr advances into material at force / feedResistance (N·s/m).",
                          Range::openClosed(0, 1e6)};

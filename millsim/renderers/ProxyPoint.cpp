@@ -1,6 +1,7 @@
 #include "millsim/renderers/ProxyPoint.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -10,12 +11,93 @@
 
 namespace millsim {
 
+glm::dvec3 ProxyField::outwardNormal(const glm::dvec3& p) const {
+  const glm::dvec3 g = gradient(p);
+  const double len = glm::length(g);
+  return len > 1e-12 && std::isfinite(len) ? -g / len : glm::dvec3(0.0);
+}
+
+double SceneField::value(const glm::dvec3& p) const { return scene_.field(p); }
+glm::dvec3 SceneField::gradient(const glm::dvec3& p) const { return scene_.gradient(p); }
+double SceneField::voxelSize() const { return scene_.voxelSize(); }
+
+namespace {
+
+// The 26 directions of a cube's faces, edges and corners: symmetric under the
+// axis flips, so a burr pressed straight onto an axis-aligned face is sampled
+// symmetrically about the normal.
+std::array<glm::dvec3, 26> cubeDirections() {
+  std::array<glm::dvec3, 26> d{};
+  std::size_t n = 0;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x || y || z) d[n++] = glm::normalize(glm::dvec3(x, y, z));
+  return d;
+}
+const std::array<glm::dvec3, 26> kDirections = cubeDirections();
+
+}  // namespace
+
+double BurrField::voxelSize() const { return scene_->voxelSize(); }
+
+void BurrField::evaluate(const glm::dvec3& c) const {
+  if (cached_ && c == at_) return;
+  const HapticScene& scene = *scene_;
+  // The last maximiser first: in contact it is the answer up to the frame's motion.
+  glm::dvec3 u = direction_;
+  double best = scene.field(c + radius_ * u);
+  for (const glm::dvec3& d : kDirections) {
+    const double s = scene.field(c + radius_ * d);
+    if (s > best) best = s, u = d;
+  }
+  // Three steps towards the deepest point of the sphere, each fitting a
+  // parabola to s at ±a along two tangent directions (a = 0.2, 0.05, 0.0125 rad).
+  // No gradients: the scene's central differences one voxel apart straddle a
+  // one-voxel density ramp, and their direction leans towards the diagonals by
+  // several degrees where the surface is oblique to the voxel axes.
+  for (const double a : {0.2, 0.05, 0.0125}) {
+    const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 t2 = glm::cross(u, t1);
+    double step[2] = {0.0, 0.0};
+    const glm::dvec3 axes[2] = {t1, t2};
+    for (int i = 0; i < 2; ++i) {
+      const double sp = scene.field(c + radius_ * glm::normalize(u + std::tan(a) * axes[i]));
+      const double sm = scene.field(c + radius_ * glm::normalize(u - std::tan(a) * axes[i]));
+      const double slope = (sp - sm) / (2.0 * a), curve = (sp - 2.0 * best + sm) / (a * a);
+      if (curve < 0.0) step[i] = std::clamp(-slope / curve, -2.0 * a, 2.0 * a);
+      else if (sp != sm) step[i] = sp > sm ? a : -a;
+    }
+    if (step[0] == 0.0 && step[1] == 0.0) break;
+    const glm::dvec3 next = glm::normalize(u + std::tan(step[0]) * t1 + std::tan(step[1]) * t2);
+    const double sn = scene.field(c + radius_ * next);
+    if (!(sn > best)) continue;
+    best = sn;
+    u = next;
+  }
+  // ∇g is ∇s at the maximiser (the envelope theorem), which is parallel to u
+  // there; its size is the derivative of s along u (a quarter voxel each way).
+  const double e = 0.25 * scene.voxelSize();
+  const double along = (scene.field(c + (radius_ + e) * u) - scene.field(c + (radius_ - e) * u)) / (2.0 * e);
+  const glm::dvec3 g = along > 0.0 && std::isfinite(along) ? along * u : glm::dvec3(0.0);
+  at_ = c;
+  value_ = best;
+  gradient_ = g;
+  direction_ = u;
+  cached_ = true;
+}
+
 const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3& probe) {
+  const SceneField field(scene);
+  return update(field, probe);
+}
+
+const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& probe) {
   if (!isFinite(probe)) return proxy_;
-  const double h = scene.voxelSize();
+  const double h = field.voxelSize();
   glm::dvec3 entry;
   if (!inContact_) {
-    if (scene.field(proxy_) > 0.0) {
+    if (field.value(proxy_) > 0.0) {
       // The probe was never seen outside (a run that starts inside material):
       // there is no surface to hold it to, so follow it without force rather
       // than throw the hand out of the material.
@@ -24,20 +106,26 @@ const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3&
     }
     // Free motion, unless the way from the proxy to the probe enters material
     // (even if the probe has already come out on the far side of a thin wall).
-    if (!findEntry(scene, proxy_, probe, entry)) {
+    if (!findEntry(field, proxy_, probe, entry)) {
       proxy_ = probe;
       return proxy_;
     }
     proxy_ = entry;
     inContact_ = true;
-  } else if (scene.field(probe) <= 0.0 && !findEntry(scene, proxy_, probe, entry)) {
+  } else if (field.value(probe) <= 0.0 && !findEntry(field, proxy_, probe, entry)) {
     // The probe is back outside and nothing lies between: released.
     proxy_ = probe;
     inContact_ = false;
     return proxy_;
+  } else if (params_.recedeTowardsProbe && field.value(proxy_) < 0.0) {
+    // Milling removed the material the proxy rested on: like a god object, it
+    // moves straight towards the probe until it meets material again (not
+    // along the field's gradient, which in the burr's own round pit points at
+    // whichever point of the rim happens to be deepest: a sideways drift).
+    if (findEntry(field, proxy_, probe, entry)) proxy_ = entry;
   }
   for (int it = 0; it < params_.slideIterations; ++it) {
-    const glm::dvec3 n = scene.outwardNormal(proxy_);
+    const glm::dvec3 n = field.outwardNormal(proxy_);
     if (n == glm::dvec3(0.0)) break;  // no gradient (homogeneous material): stay put
     const glm::dvec3 delta = probe - proxy_;
     // Remove the component that would push the proxy into the material.
@@ -46,38 +134,46 @@ const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3&
     if (len < 1e-3 * h) break;
     const double maxStep = params_.maxSlideVoxels * h;
     if (len > maxStep) move *= maxStep / len;
-    const glm::dvec3 next = projectToSurface(scene, proxy_ + move, maxStep);
+    glm::dvec3 next = projectToSurface(field, proxy_ + move, maxStep);
+    for (int k = 0; params_.refuseSinkingSlides && k < 4 && isFinite(next) && field.value(next) > 0.0 &&
+                    field.outwardNormal(next) == glm::dvec3(0.0);
+         ++k) {
+      move *= 0.5;
+      next = projectToSurface(field, proxy_ + move, maxStep);
+    }
     if (!isFinite(next)) break;
+    if (params_.refuseSinkingSlides && field.value(next) > 0.0 && field.outwardNormal(next) == glm::dvec3(0.0))
+      break;  // every shorter slide sank too: stay
     proxy_ = next;
   }
   // Milling may have removed the material under the proxy: follow the
   // receding surface towards the probe.
-  if (scene.field(proxy_) < 0.0) {
-    const glm::dvec3 next = projectToSurface(scene, proxy_, params_.maxSlideVoxels * h);
+  if (!params_.recedeTowardsProbe && field.value(proxy_) < 0.0) {
+    const glm::dvec3 next = projectToSurface(field, proxy_, params_.maxSlideVoxels * h);
     if (isFinite(next) && glm::dot(next - proxy_, probe - proxy_) > 0.0) proxy_ = next;
   }
   return proxy_;
 }
 
-bool ProxyPoint::findEntry(const HapticScene& scene, const glm::dvec3& from, const glm::dvec3& to,
+bool ProxyPoint::findEntry(const ProxyField& field, const glm::dvec3& from, const glm::dvec3& to,
                            glm::dvec3& entry) const {
-  const double h = scene.voxelSize();
+  const double h = field.voxelSize();
   const double dist = glm::length(to - from);
   // Half-voxel steps (bounded in number, for absurd jumps).
   const int steps = std::clamp(int(std::ceil(dist / (0.5 * h))), 1, 4096);
   // The start is on or outside the surface; it is never itself the entry.
   glm::dvec3 prev = from;
-  double sPrev = std::min(scene.field(from), 0.0);
+  double sPrev = std::min(field.value(from), 0.0);
   for (int i = 1; i <= steps; ++i) {
     const glm::dvec3 p = from + (to - from) * (double(i) / steps);
-    const double s = scene.field(p);
+    const double s = field.value(p);
     if (s > 0.0) {
       // Refine between the last outside and first inside sample.
       glm::dvec3 a = prev, b = p;
       double sa = sPrev, sb = s;
       for (int k = 0; k < 12; ++k) {
         const glm::dvec3 m = 0.5 * (a + b);
-        const double sm = scene.field(m);
+        const double sm = field.value(m);
         if (sm > 0.0) b = m, sb = sm;
         else a = m, sa = sm;
       }
@@ -92,10 +188,10 @@ bool ProxyPoint::findEntry(const HapticScene& scene, const glm::dvec3& from, con
   return false;
 }
 
-glm::dvec3 ProxyPoint::projectToSurface(const HapticScene& scene, glm::dvec3 p, double maxStep) const {
+glm::dvec3 ProxyPoint::projectToSurface(const ProxyField& field, glm::dvec3 p, double maxStep) const {
   for (int k = 0; k < 4; ++k) {
-    const double s = scene.field(p);
-    const glm::dvec3 g = scene.gradient(p);
+    const double s = field.value(p);
+    const glm::dvec3 g = field.gradient(p);
     const double gg = glm::dot(g, g);
     if (!(gg > 0.0) || !std::isfinite(gg)) break;
     glm::dvec3 step = -(s / gg) * g;

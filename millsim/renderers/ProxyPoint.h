@@ -1,8 +1,8 @@
 #pragma once
-// The 3-DOF probe–proxy ("god-object") algorithm on the scene's implicit
-// surface, used by Algorithm #1 for the burr centre and for the shaft's
-// intersection point. The paper takes it from its ref. [1], which it does not
-// give; MillSim uses the implicit-surface proxy of Salisbury & Tarr (1997):
+// The 3-DOF probe–proxy ("god-object") algorithm on an implicit field, used by
+// Algorithm #1 for the burr centre and for the shaft's intersection point. The
+// paper takes it from its ref. [1], which it does not give; MillSim uses the
+// implicit-surface proxy of Salisbury & Tarr (1997):
 //
 //  - free: the proxy is the probe, as long as the segment from the proxy to
 //    the probe stays outside material;
@@ -10,20 +10,95 @@
 //    at half a voxel, then refined by bisection), even when the probe has
 //    come out on the far side of a thin wall, so it cannot tunnel;
 //  - in contact: the proxy slides in the tangent plane towards the probe's
-//    projection and is projected back onto s = 0 by Newton steps along the
-//    gradient, a bounded distance per iteration.
+//    projection and is projected back onto the zero set by Newton steps along
+//    the gradient, a bounded distance per iteration.
 // The force the caller derives is k·(proxy − probe).
+//
+// The field is either the scene's s(p) (a point: the shaft's intersection
+// point, and the paper's burr-centre vertex) or BurrField, s dilated by the
+// burr sphere (the burr's centre held so that its *surface* stays out of
+// material: docs/algorithms.md, Algorithm #1).
 #include <glm/vec3.hpp>
 
 namespace millsim {
 
 class HapticScene;
 
+// A field the proxy is kept out of: value > 0 inside, gradient = d value / dp.
+class ProxyField {
+public:
+  virtual ~ProxyField() = default;
+  virtual double value(const glm::dvec3& p) const = 0;
+  virtual glm::dvec3 gradient(const glm::dvec3& p) const = 0;
+  virtual double voxelSize() const = 0;  // the natural search step
+  // Unit outward normal (−gradient, normalised), zero where it is undefined.
+  glm::dvec3 outwardNormal(const glm::dvec3& p) const;
+};
+
+// The scene's implicit surface s(p) itself.
+class SceneField final : public ProxyField {
+public:
+  explicit SceneField(const HapticScene& scene) : scene_(scene) {}
+  double value(const glm::dvec3& p) const override;
+  glm::dvec3 gradient(const glm::dvec3& p) const override;
+  double voxelSize() const override;
+
+private:
+  const HapticScene& scene_;
+};
+
+// The burr sphere's dilation of the scene: g(c) = max over |u| = 1 of
+// s(c + r·u), > 0 exactly when the burr centred at c has part of its surface in
+// material. Evaluated at 26 fixed directions (cube faces, edges, corners) plus
+// the last maximiser, then refined by two parabola fits over the sphere's
+// tangent angles. Its gradient is ∇s at the maximiser (the envelope theorem),
+// parallel to the maximiser's direction u there: the burr's contact normal is
+// −u. About 40 field samples per evaluation; the last one is cached,
+// so value() then gradient() at one point costs one evaluation. No allocation.
+class BurrField final : public ProxyField {
+public:
+  explicit BurrField(double radius) : radius_(radius) {}
+  // The scene of this frame (the field reads it until the next call).
+  // The scene of this frame (the field reads it until the next call). Forgets
+  // the cached evaluation: milling may have changed the scene since.
+  void bind(const HapticScene& scene) {
+    cached_ = false;
+    scene_ = &scene;
+  }
+  double value(const glm::dvec3& c) const override { return evaluate(c), value_; }
+  glm::dvec3 gradient(const glm::dvec3& c) const override { return evaluate(c), gradient_; }
+  double voxelSize() const override;
+  // The unit direction from the centre to the burr's deepest point at the last
+  // evaluation (where it touches, in contact).
+  const glm::dvec3& deepestDirection() const { return direction_; }
+  double radius() const { return radius_; }
+
+private:
+  void evaluate(const glm::dvec3& c) const;
+
+  double radius_;
+  const HapticScene* scene_ = nullptr;
+  mutable bool cached_ = false;
+  mutable glm::dvec3 at_{0.0};
+  mutable double value_ = -1.0;
+  mutable glm::dvec3 gradient_{0.0};
+  mutable glm::dvec3 direction_{0.0, -1.0, 0.0};  // the last maximiser (the next evaluation's first guess)
+};
+
 class ProxyPoint {
 public:
   struct Params {
     int slideIterations = 6;  // tangent-plane steps per update
     double maxSlideVoxels = 2.0;  // longest slide per iteration, in voxels
+    // When milling has moved the surface away from a proxy in contact: true
+    // moves it straight towards the probe until it touches again (the burr's
+    // proxy); false projects it along the gradient (the shaft's point).
+    bool recedeTowardsProbe = false;
+    // Refuse (halve, up to four times) a slide that ends past the field's
+    // one-voxel ramp, where it has no gradient to project back along: in a
+    // concave crease a slide along one face runs into the other (the burr's
+    // proxy; its field is a maximum over the sphere, whose creases are sharp).
+    bool refuseSinkingSlides = false;
   };
   ProxyPoint() = default;
   explicit ProxyPoint(Params p) : params_(p) {}
@@ -39,6 +114,8 @@ public:
     inContact_ = true;
   }
   // Moves the proxy for a new probe position; returns the new proxy.
+  const glm::dvec3& update(const ProxyField& field, const glm::dvec3& probe);
+  // The same on the scene's surface s(p).
   const glm::dvec3& update(const HapticScene& scene, const glm::dvec3& probe);
   // Where `other` is and whether it touches, keeping this one's parameters (a live retune).
   void takeStateFrom(const ProxyPoint& other) {
@@ -51,8 +128,8 @@ public:
 private:
   // Where the segment from → to first enters material (half-voxel steps,
   // bisection, then eq. 1's fraction); false if it stays outside.
-  bool findEntry(const HapticScene& scene, const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& entry) const;
-  glm::dvec3 projectToSurface(const HapticScene& scene, glm::dvec3 p, double maxStep) const;
+  bool findEntry(const ProxyField& field, const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& entry) const;
+  glm::dvec3 projectToSurface(const ProxyField& field, glm::dvec3 p, double maxStep) const;
 
   Params params_;
   glm::dvec3 proxy_{0.0};

@@ -272,15 +272,14 @@ TEST(Replay, UnknownRendererAndMissingDeviceAreClearErrors) {
 // wall of the burr's own hole, and the drawn shaft, offset by its radius from
 // an intersection that close to the tip, swung up to 83° (seen at t = 9 s).
 TEST(Replay, LineProxyDrawnShaftStaysWithTheDeviceWhileMillingStraightDown) {
-  // The default lesson with its enamel as hard as dentin. Waiver, named: with
-  // the enamel at hardness 5 the device runs ahead of the slower cut, the
-  // shaft meets the hole's rim, and #1's drawn shaft (eq. 12–13) leaves the
-  // device's by 26° at t = 9.021 s — the drawn-pose fault issue 14 is about.
+  // The default lesson as shipped, its enamel at hardness 5: the device runs
+  // ahead of the slower cut. With #1 feeling only the burr centre the shaft met
+  // the hole's rim and the drawn shaft (eq. 12–13) left the device's by 26° at
+  // t = 9.021 s (the test then ran with the enamel at hardness 1); with the
+  // burr's surface felt (feelBurrSurface) it stays with the device.
   std::ifstream file(MILLSIM_SOURCE_DIR "/x3d/default.x3d");
   std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  const std::size_t enamel = text.find("hardness=\"5\"");
-  ASSERT_NE(enamel, std::string::npos) << "the default lesson's enamel is no longer hardness 5: revisit this waiver";
-  text.replace(enamel, 12, "hardness=\"1\"");
+  ASSERT_NE(text.find("hardness=\"5\""), std::string::npos) << "the default lesson's enamel is no longer hardness 5";
   LoadResult r = loadSceneString(text, MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry(), {}, MILLSIM_SOURCE_DIR "/x3d");
   ASSERT_TRUE(r.ok()) << r.report();
   ReplayOptions options;
