@@ -32,6 +32,7 @@ void Scene::forEachNode(const std::function<void(Node&)>& visit) const {
         for (auto& child : nf->nodes()) walk(*child);
   };
   for (auto& n : root->children.get()) walk(*n);
+  for (auto& n : unattached) walk(*n);
 }
 
 std::size_t Scene::nodeCount() const {

@@ -44,6 +44,10 @@ public:
   std::string version;
   std::vector<std::pair<std::string, std::string>> meta;  // <meta name content>
   std::shared_ptr<SceneRoot> root;                      // the <Scene> element's children
+  // Nodes that no node field holds: a ProtoInstance's body nodes after the
+  // first (X3D draws only the first; the others, e.g. sensors, keep their
+  // routes). Owned here; forEachNode visits them after the tree.
+  std::vector<std::shared_ptr<Node>> unattached;
   std::map<std::string, std::shared_ptr<Node>, std::less<>> defs;
   std::vector<RouteRecord> routes;
   NodeRegistry registry;                                  // built-ins plus loaded plugins

@@ -4,12 +4,14 @@
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
 #include "millsim/std/ImportLibrary.h"
 #include "millsim/std/Inline.h"
 #include "millsim/x3d/H3dNodeNames.h"
+#include "millsim/x3d/ProtoReader.h"
 #include "millsim/x3d/SceneFileText.h"
 #include "millsim/x3d/SourceText.h"
 #include "millsim/x3d/UnitStatement.h"
@@ -27,21 +29,6 @@ std::string LoadResult::report() const {
 
 namespace {
 
-std::string_view nameOf(const xmlNode* n) { return reinterpret_cast<const char*>(n->name); }
-
-std::string attrValue(xmlDocPtr doc, const xmlAttr* a) {
-  xmlChar* v = xmlNodeListGetString(doc, a->children, 1);
-  std::string s = v ? reinterpret_cast<const char*>(v) : "";
-  xmlFree(v);
-  return s;
-}
-
-const xmlAttr* findAttr(const xmlNode* el, std::string_view name) {
-  for (const xmlAttr* a = el->properties; a; a = a->next)
-    if (!a->ns && nameOf(reinterpret_cast<const xmlNode*>(a)) == name) return a;
-  return nullptr;
-}
-
 std::string joinNames(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
@@ -55,30 +42,17 @@ std::string didYouMean(const std::vector<std::string>& suggestions) {
 
 bool isBlank(std::string_view s) { return s.find_first_not_of(" \t\r\n") == std::string_view::npos; }
 
-// One parsed file: its text, its XML tree and its DEF namespace (an Inline's
-// DEF names are private to it, as X3D specifies).
-struct Document {
-  SourceText src;
-  xmlDocPtr xml = nullptr;
-  fs::path dir;
-  std::map<std::string, std::shared_ptr<Node>, std::less<>>* defs;
-  // DEF name -> type of nodes skipped as unsupported: a USE or ROUTE of one is skipped too.
-  std::map<std::string, std::string, std::less<>> skippedDefs;
-  ~Document() {
-    if (xml) xmlFreeDoc(xml);
-  }
-};
-
-class Loader {
+class Loader : private ProtoHost {
 public:
   Loader(const NodeRegistry& registry, const LoadOptions& options)
-      : options_(options), sink_(options.maxErrors), scene_(std::make_unique<Scene>()) {
+      : options_(options), sink_(options.maxErrors), scene_(std::make_unique<Scene>()),
+        protos_(*this, sink_, options.allowFileAccess, options.maxProtoElements) {
     scene_->registry = registry;
   }
 
   LoadResult load(std::string text, std::string label, fs::path dir, fs::path canonical) {
     if (!canonical.empty()) inlineStack_.push_back(canonical);
-    Document doc{SourceText(std::move(label), std::move(text)), nullptr, std::move(dir), &scene_->defs, {}};
+    Document doc(SourceText(std::move(label), std::move(text)), std::move(dir), &scene_->defs);
     if (parseXml(doc)) readTopLevel(doc, scene_->root->children, true);
     // Whole-scene checks (NodeRegistry::addSceneCheck) need a scene whose nodes all loaded.
     if (!sink_.hasErrors())
@@ -154,15 +128,11 @@ private:
   }
 
   SourceLocation locate(Document& doc, const xmlNode* el, std::size_t* tagStart = nullptr) {
-    std::size_t pos = doc.src.findStartTag(nameOf(el), xmlGetLineNo(const_cast<xmlNode*>(el)));
-    if (tagStart) *tagStart = pos;
-    if (pos == std::string::npos) return doc.src.atLine(xmlGetLineNo(const_cast<xmlNode*>(el)));
-    return doc.src.at(pos);
+    return doc.locate(el, tagStart);
   }
 
   SourceLocation locateAttr(Document& doc, std::size_t tagStart, std::string_view attr, const SourceLocation& fallback) {
-    std::size_t pos = doc.src.findAttribute(tagStart, attr);
-    return pos == std::string::npos ? fallback : doc.src.at(pos);
+    return doc.locateAttr(tagStart, attr, fallback);
   }
 
   // ---- X3D / head / Scene ---------------------------------------------------
@@ -213,7 +183,7 @@ private:
     std::vector<const Node*> ancestors;
     forEachChild(doc, scene, "Scene", [&](xmlNode* child) {
       if (nameOf(child) == "ROUTE") readRoute(doc, child);
-      else readAndAttach(doc, child, target, "Scene", ancestors);
+      else if (!protos_.readStatement(doc, child)) readAndAttach(doc, child, target, "Scene", ancestors);
     });
   }
 
@@ -367,8 +337,9 @@ private:
     const std::string type(nameOf(el));
     if (const xmlAttr* use = findAttr(el, "USE")) return readUse(doc, el, tag, loc, attrValue(doc.xml, use), ancestors);
 
-    if (type == "ProtoDeclare" || type == "ExternProtoDeclare" || type == "ProtoInstance") {
-      sink_.error(loc, "<" + type + "> is not supported; write the nodes out or use Inline");
+    if (type == "ProtoInstance") return protos_.readInstance(doc, el, tag, loc, ancestors);
+    if (type == "ProtoDeclare" || type == "ExternProtoDeclare") {
+      sink_.error(loc, "<" + type + "> belongs in <Scene> or a <ProtoBody>, not inside a node");
       return nullptr;
     }
     std::shared_ptr<Node> node = scene_->registry.create(type);
@@ -403,6 +374,10 @@ private:
     forEachChild(doc, el, type, [&](xmlNode* c) {
       if (nameOf(c) == "ROUTE") {
         readRoute(doc, c);
+        return;
+      }
+      if (nameOf(c) == "IS") {
+        protos_.readIs(doc, c, *node);
         return;
       }
       std::size_t childTag;
@@ -489,7 +464,7 @@ private:
                                 const std::string& name, const std::vector<const Node*>& ancestors) {
     for (const xmlAttr* a = el->properties; a; a = a->next) {
       std::string_view n = nameOf(reinterpret_cast<const xmlNode*>(a));
-      if (!a->ns && n != "USE" && n != "containerField") {
+      if (!a->ns && n != "USE" && n != "containerField" && !(n == "name" && nameOf(el) == "ProtoInstance")) {
         sink_.error(locateAttr(doc, tag, n, loc),
                     "a USE element takes no other attributes (found '" + std::string(n) + "'); set fields on the DEF");
         return nullptr;
@@ -509,7 +484,7 @@ private:
                                                         didYouMean(closestNames(name, names)));
       return nullptr;
     }
-    if (it->second->typeName() != nameOf(el)) {
+    if (it->second->typeName() != nameOf(el) && !(nameOf(el) == "ProtoInstance" && protos_.isInstance(it->second.get()))) {
       sink_.error(loc, "USE '" + name + "' refers to a " + it->second->typeName() + ", but the element is <" +
                            std::string(nameOf(el)) + ">");
       return nullptr;
@@ -624,25 +599,42 @@ private:
       }
       ends[i] = it->second.get();
     }
-    Field* from = routeField(*ends[0], v[1], true);
-    Field* to = routeField(*ends[1], v[3], false);
+    // A ProtoInstance's interface field stands for the inner fields IS connects to it.
+    std::vector<Field*> endFields[2];
     for (int i = 0; i < 2; ++i) {
-      Field* f = i == 0 ? from : to;
-      if (f) continue;
+      const SourceLocation fieldAt = locateAttr(doc, tag, names[2 * i + 1], loc);
+      if (RouteEnds r = protos_.routeEnds(ends[i], v[2 * i + 1], i == 0, fieldAt); r.isInterfaceField) {
+        if (!r.fields) return;
+        if (r.fields->empty()) {
+          sink_.warning(fieldAt, "ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + " does nothing: field '" +
+                                     v[2 * i + 1] + "' of proto '" + r.proto + "' is connected (IS) to no field inside it");
+          return;
+        }
+        endFields[i] = *r.fields;
+        continue;
+      }
+      if (Field* f = routeField(*ends[i], v[2 * i + 1], i == 0)) {
+        endFields[i] = {f};
+        continue;
+      }
       std::vector<std::string> fieldNames;
       for (Field* nf : ends[i]->fields()) fieldNames.emplace_back(nf->name());
-      sink_.error(locateAttr(doc, tag, names[2 * i + 1], loc),
-                  "ROUTE " + std::string(names[2 * i + 1]) + ": " + ends[i]->typeName() + " '" + v[2 * i] +
-                      "' has no field '" + v[2 * i + 1] + "'" + didYouMean(closestNames(v[2 * i + 1], fieldNames)));
+      for (auto& pf : protos_.interfaceFieldNames(ends[i])) fieldNames.push_back(std::move(pf));
+      sink_.error(fieldAt, "ROUTE " + std::string(names[2 * i + 1]) + ": " + ends[i]->typeName() + " '" + v[2 * i] +
+                               "' has no field '" + v[2 * i + 1] + "'" +
+                               didYouMean(closestNames(v[2 * i + 1], fieldNames)));
       return;
     }
-    try {
-      from->routeTo(*to);
-      scene_->routes.push_back({ends[0], from, ends[1], to, loc});
-    } catch (const RouteError& e) {
-      sink_.error(loc, "cannot ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + ": " + e.what());
-    }
+    for (Field* from : endFields[0])
+      for (Field* to : endFields[1]) try {
+          from->routeTo(*to);
+          scene_->routes.push_back({from->owner(), from, to->owner(), to, loc});
+        } catch (const RouteError& e) {
+          sink_.error(loc, "cannot ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + ": " + e.what());
+          return;
+        }
   }
+
 
   // ---- Inline and ImportLibrary --------------------------------------------
   void loadInline(Document& doc, Inline& inl, const SourceLocation& loc) {
@@ -691,9 +683,12 @@ private:
         at = next;
       }
       inlineStack_.push_back(canonical);
-      std::map<std::string, std::shared_ptr<Node>, std::less<>> privateDefs;
-      Document sub{SourceText(p.string(), std::move(text)), nullptr, p.parent_path(), &privateDefs, {}};
-      if (parseXml(sub)) readTopLevel(sub, inl.loaded, false);
+      DefMap privateDefs;
+      Document sub(SourceText(p.string(), std::move(text)), p.parent_path(), &privateDefs);
+      {
+        ProtoReader::FileScope ownProtos(protos_);  // an Inline's protos are its own
+        if (parseXml(sub)) readTopLevel(sub, inl.loaded, false);
+      }
       inlineStack_.pop_back();
       return;
     }
@@ -749,6 +744,26 @@ private:
   std::vector<fs::path> inlineStack_;
   static constexpr int kWarningsPerUnsupportedType = 10;
   std::map<std::string, int> unsupportedSeen_;  // warnings given per unsupported type
+  ProtoReader protos_;  // prototypes: declarations, expansion, routes to instances
+
+  // ---- ProtoHost: what the proto reader asks of the loader ---------------------
+  std::shared_ptr<Node> readNodeElement(Document& doc, xmlNode* el, std::size_t tag, const SourceLocation& loc,
+                                        std::vector<const Node*>& ancestors) override {
+    return readNode(doc, el, tag, loc, ancestors);
+  }
+  void readRouteElement(Document& doc, xmlNode* el) override { readRoute(doc, el); }
+  bool isElement(Document& doc, xmlNode* c, std::string_view parent) override { return checkNonElement(doc, c, parent); }
+  std::unique_ptr<Document> openDocument(const fs::path& p, const SourceLocation& loc) override {
+    std::string text;
+    if (!readFile(p, text, loc)) return nullptr;
+    auto d = std::make_unique<Document>(SourceText(p.string(), std::move(text)), p.parent_path(), nullptr);
+    if (!parseXml(*d)) return nullptr;
+    return d;
+  }
+  bool isBeingRead(const fs::path& canonical) const override {
+    return std::find(inlineStack_.begin(), inlineStack_.end(), canonical) != inlineStack_.end();
+  }
+  void keepUnattached(std::shared_ptr<Node> node) override { scene_->unattached.push_back(std::move(node)); }
 
   friend LoadResult millsim::loadSceneFile(const fs::path&, const NodeRegistry&, const LoadOptions&);
 };

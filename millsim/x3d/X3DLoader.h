@@ -21,6 +21,9 @@ struct LoadOptions {
   std::size_t maxErrors = 25;
   int maxInlineDepth = 16;
   std::uintmax_t maxFileBytes = 64u << 20;  // X3D text, not volume data
+  // Body elements all ProtoInstances of a load may expand to: protos that
+  // instantiate others several times multiply, like an XML entity bomb.
+  std::size_t maxProtoElements = 1000000;
   // true: every warning is an error too (the verbs' --strict), so a scene that
   // loads only by skipping or guessing is refused.
   bool strict = false;
