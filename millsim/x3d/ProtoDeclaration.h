@@ -36,7 +36,10 @@ struct ProtoDecl {
   const xmlNode* body = nullptr;      // <ProtoBody>
   std::size_t bodyElements = 0;       // elements inside it: what one instance costs to expand
   Document* doc = nullptr;            // the file that declares it (its text, tree and folder)
-  std::shared_ptr<ProtoScope> scope;  // the protos its body may instantiate
+  // The protos its body may instantiate: the scope that declares it. Weak, as
+  // that scope holds this declaration (a shared one leaked the pair); the
+  // reader keeps file scopes alive, and a body's scope lives while it expands.
+  std::weak_ptr<ProtoScope> scope;
 
   const ProtoFieldDecl* field(std::string_view n) const;
   std::vector<std::string> fieldNames() const;

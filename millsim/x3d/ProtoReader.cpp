@@ -35,7 +35,7 @@ bool ProtoReader::readStatement(Document& doc, xmlNode* el) {
 }
 
 void ProtoReader::declare(const std::string& name, std::shared_ptr<ProtoDecl> decl, const SourceLocation& at) {
-  if (!decl->scope) decl->scope = scope_;
+  if (!decl->scope.lock()) decl->scope = scope_;
   if (auto prev = scope_->protos.find(name); prev != scope_->protos.end())
     sink_.warning(at, "proto '" + name + "' is already declared at " + prev->second->where.str() +
                           "; this declaration takes the name for what follows");
@@ -304,7 +304,7 @@ std::shared_ptr<Node> ProtoReader::expandBody(const ProtoDecl& decl, ProtoInstan
   DefMap* outerDefs = std::exchange(body.defs, &privateDefs);
   std::swap(body.skippedDefs, privateSkipped);
   auto bodyScope = std::make_shared<ProtoScope>();
-  bodyScope->parent = decl.scope;
+  bodyScope->parent = decl.scope.lock();
   auto outerScope = std::exchange(scope_, bodyScope);
   auto* outerInstance = std::exchange(activeInstance_, &inst);
   expanding_.push_back(&decl);
