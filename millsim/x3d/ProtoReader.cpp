@@ -69,17 +69,10 @@ void ProtoReader::readExtern(Document& doc, xmlNode* el) {
       if (externMatches(*ext, *decl, sink_)) declare(ext->name, decl, loc);
       return;
     }
-    fs::path p = fs::path(file).is_absolute() ? fs::path(file) : doc.dir / file;
-    if (auto unsupported = unsupportedEncoding(p)) {
-      tried += "\n  " + *unsupported;
-      continue;
-    }
-    std::error_code ec;
-    if (!fs::is_regular_file(p, ec)) {
-      tried += "\n  " + p.string() + ": no such file";
-      continue;
-    }
-    const fs::path canonical = fs::weakly_canonical(p, ec);
+    const auto local = localSceneFile(file, doc.dir, tried);
+    if (!local) continue;
+    const fs::path& p = local->path;
+    const fs::path& canonical = local->canonical;
     // The files being read from the one asked for again to here: a cycle, which would never end.
     bool cycle = host_.isBeingRead(canonical);
     std::string chain = cycle ? canonical.filename().string() + " -> " : std::string();

@@ -24,6 +24,25 @@ std::optional<std::string> unsupportedEncoding(const fs::path& file) {
          "(.x3d, .x3d.gz, .x3dz); convert the file, e.g. with view3dscene's tovrmlx3d --encoding=xml";
 }
 
+std::optional<LocalSceneFile> localSceneFile(const std::string& url, const fs::path& dir, std::string& tried) {
+  if (url.find("://") != std::string::npos) {
+    tried += "\n  " + url + ": network URLs are not allowed";
+    return std::nullopt;
+  }
+  fs::path p = fs::path(url).is_absolute() ? fs::path(url) : dir / url;
+  if (auto unsupported = unsupportedEncoding(p)) {
+    tried += "\n  " + *unsupported;
+    return std::nullopt;
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) {
+    tried += "\n  " + p.string() + ": no such file";
+    return std::nullopt;
+  }
+  fs::path canonical = fs::weakly_canonical(p, ec);
+  return LocalSceneFile{std::move(p), std::move(canonical)};
+}
+
 namespace {
 
 std::optional<std::string> inflateGzip(const std::string& in, std::uintmax_t maxBytes, std::string& out,

@@ -653,21 +653,10 @@ private:
     }
     std::string tried;
     for (const std::string& url : inl.url.get()) {
-      if (url.find("://") != std::string::npos) {
-        tried += "\n  " + url + ": network URLs are not allowed";
-        continue;
-      }
-      fs::path p = fs::path(url).is_absolute() ? fs::path(url) : doc.dir / url;
-      if (auto unsupported = unsupportedEncoding(p)) {
-        tried += "\n  " + *unsupported;
-        continue;
-      }
-      std::error_code ec;
-      if (!fs::is_regular_file(p, ec)) {
-        tried += "\n  " + p.string() + ": no such file";
-        continue;
-      }
-      fs::path canonical = fs::weakly_canonical(p, ec);
+      const auto local = localSceneFile(url, doc.dir, tried);
+      if (!local) continue;
+      const fs::path& p = local->path;
+      const fs::path& canonical = local->canonical;
       for (const auto& open : inlineStack_)
         if (open == canonical) {
           sink_.error(loc, "Inline cycle: '" + p.string() + "' is already being loaded");
