@@ -2,6 +2,7 @@
 // location and wording of its errors.
 #include <gtest/gtest.h>
 
+#include "SceneText.h"
 #include "TestFiles.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/std/Inline.h"
@@ -14,23 +15,8 @@
 using namespace millsim;
 using millsim::test::ScratchDir;
 using millsim::test::x3d;
-
-namespace {
-
-LoadResult load(const std::string& text) {
-  LoadOptions options;
-  options.plugins.searchPath.clear();
-  return loadSceneString(text, "test.x3d", builtinRegistry(), options);
-}
-
-const Diagnostic& firstError(const LoadResult& r) {
-  for (const auto& d : r.diagnostics)
-    if (d.severity == Severity::Error) return d;
-  static Diagnostic none;
-  return none;
-}
-
-}  // namespace
+using millsim::test::firstError;
+using millsim::test::load;
 
 TEST(Loader, ReadsHeadSceneAndFields) {
   auto r = load(R"(<?xml version="1.0"?>

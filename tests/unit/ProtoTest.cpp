@@ -3,6 +3,7 @@
 // proto instance's interface; and the errors that name the proto and field.
 #include <gtest/gtest.h>
 
+#include "SceneText.h"
 #include "TestFiles.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/std/Appearance.h"
@@ -17,21 +18,11 @@
 using namespace millsim;
 using millsim::test::ScratchDir;
 using millsim::test::x3d;
+using millsim::test::firstError;
+using millsim::test::load;
 
 namespace {
 
-LoadResult load(const std::string& text) {
-  LoadOptions options;
-  options.plugins.searchPath.clear();
-  return loadSceneString(text, "test.x3d", builtinRegistry(), options);
-}
-
-const Diagnostic& firstError(const LoadResult& r) {
-  for (const auto& d : r.diagnostics)
-    if (d.severity == Severity::Error) return d;
-  static Diagnostic none;
-  return none;
-}
 
 template <class T>
 T& as(const std::shared_ptr<Node>& n) {
