@@ -14,6 +14,7 @@
 // compiled run instead: the VoxelScene, the algorithm and LoopSettings, see docs/architecture.md).
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -48,6 +49,10 @@ public:
   // X3D XML spelling of the value. setFromString throws ValueError with a message
   // naming what was expected.
   virtual void setFromString(std::string_view text) = 0;
+  // The value as a scene file wrote it, in that file's units (its <unit>
+  // statements): numbers of the field's Quantity, and rotation angles, are
+  // converted to SI before the range check.
+  virtual void setFromSceneText(std::string_view text, const UnitScale& /*units*/) { setFromString(text); }
   virtual std::string toString() const = 0;
   // Extra constraint shown in docs and checked on set ("> 0"); empty if none.
   virtual std::string constraint() const { return {}; }
@@ -97,6 +102,29 @@ private:
   std::uint64_t markEpoch_ = 0;  // last propagation that visited this field
 };
 
+namespace detail {
+// x scaled by f and rounded once: a float is taken as the decimal it was
+// written as, so that 0.4 mm reads as 0.0004f, not 0.00040000002f.
+template <class X> X scaled(X x, double f) {
+  if constexpr (std::is_same_v<X, float>) return float(std::strtod(formatNumber(x).c_str(), nullptr) * f);
+  else return X(x * f);
+}
+// Converts one value written in `units` to SI: the numbers of quantity `q`
+// (only the last one for a plane equation), and a rotation's angle.
+template <class T> void convertToSI(T& v, const Quantity& q, const UnitScale& units) {
+  if constexpr (std::is_same_v<T, Rotation>) {
+    v.angle = scaled(v.angle, units.angle);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    if (!(q.minusOneIsNone && v == T(-1))) v = scaled(v, units.factor(q));
+  } else if constexpr (std::is_same_v<T, glm::vec2> || std::is_same_v<T, glm::vec3> ||
+                       std::is_same_v<T, glm::vec4> || std::is_same_v<T, glm::dvec3>) {
+    if (q.minusOneIsNone && v == T(-1)) return;
+    const double f = units.factor(q);
+    for (int i = q.lastOnly ? T::length() - 1 : 0; i < T::length(); ++i) v[i] = scaled(v[i], f);
+  }
+}
+}  // namespace detail
+
 // A single value of type T (SFFloat, SFVec3f, ...).
 template <class T> class SField : public Field {
 public:
@@ -118,6 +146,11 @@ public:
 
   FieldType type() const override { return X3DValue<T>::sf; }
   void setFromString(std::string_view text) override { set(parseSingle<T>(text)); }
+  void setFromSceneText(std::string_view text, const UnitScale& units) override {
+    T v = parseSingle<T>(text);
+    if (!units.si()) detail::convertToSI(v, range_ ? range_->quantity : Quantity{}, units);
+    set(std::move(v));
+  }
   std::string toString() const override {
     if constexpr (std::is_same_v<T, std::string>) {
       return get();
@@ -166,6 +199,13 @@ public:
 
   FieldType type() const override { return X3DValue<T>::mf; }
   void setFromString(std::string_view text) override { set(parseMultiple<T>(text)); }
+  void setFromSceneText(std::string_view text, const UnitScale& units) override {
+    std::vector<T> v = parseMultiple<T>(text);
+    if constexpr (!std::is_same_v<T, bool>)  // vector<bool> has no T& (and nothing to convert)
+      if (!units.si())
+        for (T& item : v) detail::convertToSI(item, range_ ? range_->quantity : Quantity{}, units);
+    set(std::move(v));
+  }
   std::string toString() const override {
     std::string s;
     const auto& v = get();

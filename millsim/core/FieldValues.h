@@ -16,6 +16,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "millsim/core/Quantity.h"
+
 namespace millsim {
 
 enum class FieldType : std::uint8_t {
@@ -77,6 +79,14 @@ struct Range {
   double hi = std::numeric_limits<double>::infinity();
   bool loOpen = false;
   bool hiOpen = false;
+  // What the numbers measure (the bounds are in its SI unit): how a scene's
+  // <unit> statements convert them. Dimensionless unless declared with in().
+  Quantity quantity{};
+  Range in(Quantity q) const {
+    Range r = *this;
+    r.quantity = q;
+    return r;
+  }
   bool contains(double v) const {
     return (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
   }

@@ -47,11 +47,11 @@ public:
   SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
                              "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
   SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N); live: a change applies from the next frame.",
-                     Range::openClosed(0, 50)};
+                     Range::openClosed(0, 50).in(quantity::force)};
   SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m); live.",
-                      Range::openClosed(0, 5)};
+                      Range::openClosed(0, 5).in(quantity::torque)};
   SFVec3f positionCalibration{this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
-                              "Offset added to the raw device position (m).", Range::closed(-10, 10)};
+                              "Offset added to the raw device position (m).", Range::closed(-10, 10).in(quantity::length)};
   SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
                                     "Rotation applied to raw device poses (about the world origin)."};
   SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent; live."};

@@ -38,12 +38,12 @@ public:
 
   SFVec3f position{this, "position", Access::InitializeOnly, glm::vec3(0.f),
                    "Where the burr starts (m, world); (0, 0, 0): just above the middle of the scene.",
-                   Range::closed(-10, 10)};
+                   Range::closed(-10, 10).in(quantity::length)};
   SFRotation orientation{this, "orientation", Access::InitializeOnly, Rotation{},
                          "How the tool starts (default: shaft up, +Y)."};
   SFFloat depthStep{this, "depthStep", Access::InputOutput, 2e-4f,
                     "How far one Ctrl+wheel notch moves the burr along the line of sight (m).",
-                    Range::closed(1e-6, 0.01)};
+                    Range::closed(1e-6, 0.01).in(quantity::length)};
 
   // Needs DriverOptions::pointer (the window of `millsim run`); throws DeviceError without it.
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;

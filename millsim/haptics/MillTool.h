@@ -48,18 +48,18 @@ public:
                  "any MillTool field): the renderer is compiled again for the new burr and cross-faded in."};
   SFFloat tipRadius{this, "tipRadius", Access::InputOutput, 1.0e-3f,
                     "Radius of the burr sphere, or the widest radius of a non-round head (m).",
-                    Range::openClosed(0, 0.01)};
+                    Range::openClosed(0, 0.01).in(quantity::length)};
   SFFloat tipLength{this, "tipLength", Access::InputOutput, 2.0e-3f,
                     "Length of a non-round head along local Y, centred on the burr centre (m); round ignores it.",
-                    Range::openClosed(0, 0.02)};
+                    Range::openClosed(0, 0.02).in(quantity::length)};
   SFFloat tipEndRadius{this, "tipEndRadius", Access::InputOutput, 0.5e-3f,
                        "Radius of the narrow end of a taper (its cutting end) or inverted-cone (its shank end) "
                        "head (m); at most tipRadius. Round and cylinder ignore it.",
-                       Range::closed(0, 0.01)};
+                       Range::closed(0, 0.01).in(quantity::length)};
   SFFloat shaftRadius{this, "shaftRadius", Access::InputOutput, 0.5e-3f, "Radius of the shaft (m).",
-                      Range::openClosed(0, 0.01)};
+                      Range::openClosed(0, 0.01).in(quantity::length)};
   SFFloat shaftLength{this, "shaftLength", Access::InputOutput, 20e-3f,
-                      "Length of the shaft from the burr centre along local +Y (m).", Range::openClosed(0, 0.5)};
+                      "Length of the shaft from the burr centre along local +Y (m).", Range::openClosed(0, 0.5).in(quantity::length)};
 
   // The geometry; an unknown shape (refused by initialize()) reads as round.
   ToolGeometry geometry() const {

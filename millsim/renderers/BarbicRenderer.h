@@ -25,25 +25,25 @@ public:
   SFFloat contactStiffness{this, "contactStiffness", Access::InitializeOnly, 5000.f,
                            "Penalty stiffness per shell point at scale 1 (N/m); a point of a scale-s shell stands "
                            "for s² fine points and gets s² times this.",
-                           Range::openClosed(0, 1e7)};
+                           Range::openClosed(0, 1e7).in(quantity::linearStiffness)};
   SFFloat couplingStiffness{this, "couplingStiffness", Access::InitializeOnly, 2000.f,
                             "Virtual coupling spring between tool and device (N/m): the stiffness the user feels.",
-                            Range::openClosed(0, 1e6)};
+                            Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
   SFFloat couplingDamping{this, "couplingDamping", Access::InitializeOnly, 1.f,
                           "Virtual coupling damper on the tool's velocity relative to the device's (N·s/m).",
-                          Range::closed(0, 1e4)};
+                          Range::closed(0, 1e4).in(quantity::linearStiffness)};
   SFFloat angularCouplingStiffness{this, "angularCouplingStiffness", Access::InitializeOnly, 0.1f,
-                                   "Virtual coupling torsion spring (N·m/rad).", Range::openClosed(0, 1000)};
+                                   "Virtual coupling torsion spring (N·m/rad).", Range::openClosed(0, 1000).in(quantity::angularStiffness)};
   SFFloat angularCouplingDamping{this, "angularCouplingDamping", Access::InitializeOnly, 5e-4f,
-                                 "Virtual coupling torsion damper (N·m·s/rad).", Range::closed(0, 100)};
+                                 "Virtual coupling torsion damper (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularStiffness)};
   SFFloat sdfVoxelSize{this, "sdfVoxelSize", Access::InitializeOnly, 0.05e-3f,
-                       "Cell size of the tool's precomputed distance grid (m).", Range::closed(1e-5, 1e-3)};
+                       "Cell size of the tool's precomputed distance grid (m).", Range::closed(1e-5, 1e-3).in(quantity::length)};
   SFBool sampledSdf{this, "sampledSdf", Access::InitializeOnly, false,
                     "Feel the sampled distance grid (the paper's method) instead of the exact analytic distance."};
   SFFloat maxStep{this, "maxStep", Access::InitializeOnly, 0.1e-3f,
                   "Largest tool motion per frame (m, at the shaft's far end for rotations) while material is "
                   "within reach: the tool cannot tunnel through thin walls.",
-                  Range::openClosed(0, 0.01)};
+                  Range::openClosed(0, 0.01).in(quantity::length)};
   SFInt32 maxTestedPoints{this, "maxTestedPoints", Access::InitializeOnly, 20000,
                           "Work budget: past this many candidate points a frame uses the coarser fallback shell.",
                           Range::closed(1, 1e6)};
@@ -57,7 +57,7 @@ public:
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances from the tool towards the device at force / feedResistance "
                          "(N·s/m).",
-                         Range::openClosed(0, 1e6)};
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

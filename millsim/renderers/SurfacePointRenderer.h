@@ -26,12 +26,12 @@ public:
   // colliding fraction: k must be much higher than Algorithm #1's.
   SFFloat springConstant{this, "springConstant", Access::InputOutput, 20000.f,
                          "k_spring of eq. 14 (N/m); the felt stiffness is about k times the colliding fraction.",
-                         Range::openClosed(0, 1e6)};
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
 
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr cuts where the device is, and the material gives way at force / "
                          "(feedResistance x hardness) (N·s/m); MillSim's removal model, the paper removes at once.",
-                         Range::openClosed(0, 1e6)};
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

@@ -12,10 +12,10 @@ public:
   MFColor skyColor{this, "skyColor", Access::InputOutput, {Color{glm::vec3(0.f)}},
                    "Sky colours from the zenith down; the first is used as a flat background.", Range::closed(0, 1)};
   MFFloat skyAngle{this, "skyAngle", Access::InputOutput, {}, "Angles (radians) at which skyColor changes.",
-                   Range::closed(0.0, 3.14159265358979323846)};
+                   Range::closed(0.0, 3.14159265358979323846).in(quantity::angle)};
   MFColor groundColor{this, "groundColor", Access::InputOutput, {}, "Ground colours from the nadir up.", Range::closed(0, 1)};
   MFFloat groundAngle{this, "groundAngle", Access::InputOutput, {}, "Angles (radians) at which groundColor changes.",
-                      Range::closed(0.0, 1.57079632679489661923)};
+                      Range::closed(0.0, 1.57079632679489661923).in(quantity::angle)};
   SFFloat transparency{this, "transparency", Access::InputOutput, 0.f, "0 = opaque.", Range::closed(0.0, 1.0)};
   MFString backUrl{this, "backUrl", Access::InputOutput, {}, "Panorama image of the back side. Accepted; not acted on by MillSim."};
   MFString bottomUrl{this, "bottomUrl", Access::InputOutput, {}, "Panorama image of the bottom side. Accepted; not acted on by MillSim."};

@@ -16,7 +16,8 @@ public:
 
   SFVec4f plane{this, "plane", Access::InputOutput, glm::vec4(0.f, 1.f, 0.f, 0.f),
                 "Plane equation (a b c d) in the parent's frame; points with a·x + b·y + c·z + d >= 0 stay "
-                "visible. (a b c) need not be unit length but must not be zero; d is in metres when it is.", Range::closed(-1e4, 1e4)};
+                "visible. (a b c) need not be unit length but must not be zero; d is in metres when it is.",
+                Range::closed(-1e4, 1e4).in({.length = 1, .lastOnly = true})};
   SFBool enabled{this, "enabled", Access::InputOutput, true, "Whether the plane clips."};
 
   void initialize(DiagnosticSink& sink) override;

@@ -9,8 +9,8 @@ public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
 
-  SFFloat radius{this, "radius", Access::InitializeOnly, 1.f, "Radius (m).", Range::openClosed(0, 1e4)};
-  SFFloat height{this, "height", Access::InitializeOnly, 2.f, "Length along Y (m).", Range::openClosed(0, 1e4)};
+  SFFloat radius{this, "radius", Access::InitializeOnly, 1.f, "Radius (m).", Range::openClosed(0, 1e4).in(quantity::length)};
+  SFFloat height{this, "height", Access::InitializeOnly, 2.f, "Length along Y (m).", Range::openClosed(0, 1e4).in(quantity::length)};
   SFBool top{this, "top", Access::InitializeOnly, true, "Whether the top cap is drawn."};
   SFBool bottom{this, "bottom", Access::InitializeOnly, true, "Whether the bottom cap is drawn."};
   SFBool side{this, "side", Access::InitializeOnly, true, "Whether the side is drawn."};

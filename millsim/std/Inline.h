@@ -18,9 +18,9 @@ public:
   SFTime autoRefreshTimeLimit{this, "autoRefreshTimeLimit", Access::InputOutput, Time{3600},
                               "Seconds after which reloading stops. Accepted; not acted on by MillSim.", Range::closed(0, 1e9)};
   SFVec3f bboxCenter{this, "bboxCenter", Access::InitializeOnly, glm::vec3(0.f),
-                     "Centre of a bounding box hint (m). Accepted; not acted on by MillSim.", Range::closed(-1e4, 1e4)};
+                     "Centre of a bounding box hint (m). Accepted; not acted on by MillSim.", Range::closed(-1e4, 1e4).in(quantity::length)};
   SFVec3f bboxSize{this, "bboxSize", Access::InitializeOnly, glm::vec3(-1.f),
-                   "Size of a bounding box hint (m); -1 -1 -1 means none. Accepted; not acted on by MillSim.", Range::closed(-1, 1e4)};
+                   "Size of a bounding box hint (m); -1 -1 -1 means none. Accepted; not acted on by MillSim.", Range::closed(-1, 1e4).in(quantity::lengthOrNone)};
   SFString description{this, "description", Access::InputOutput, "", "Text describing the included scene. Accepted; not acted on by MillSim."};
   SFBool global{this, "global", Access::InputOutput, false, "Whether lights inside affect the whole scene. Accepted; not acted on by MillSim."};
   SFBool bboxDisplay{this, "bboxDisplay", Access::InputOutput, false, "Whether to draw the bounding box. Accepted; not acted on by MillSim."};

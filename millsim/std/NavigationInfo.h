@@ -10,12 +10,12 @@ public:
   const NodeType& nodeType() const override { return type(); }
 
   MFString navType{this, "type", Access::InputOutput, {"EXAMINE", "ANY"}, "Navigation modes, preferred first."};
-  SFFloat speed{this, "speed", Access::InputOutput, 1.f, "Navigation speed (m/s).", Range::closed(0, 1e4)};
+  SFFloat speed{this, "speed", Access::InputOutput, 1.f, "Navigation speed (m/s).", Range::closed(0, 1e4).in(quantity::length)};
   SFBool headlight{this, "headlight", Access::InputOutput, true, "Whether a light shines from the viewer."};
   MFFloat avatarSize{this, "avatarSize", Access::InputOutput, {0.25f, 1.6f, 0.75f},
-                     "Collision distance, eye height, step height (m).", Range::closed(0, 1e4)};
+                     "Collision distance, eye height, step height (m).", Range::closed(0, 1e4).in(quantity::length)};
   SFFloat visibilityLimit{this, "visibilityLimit", Access::InputOutput, 0.f,
-                          "Far clipping distance (m); 0 = unlimited.", Range::closed(0, 1e7)};
+                          "Far clipping distance (m); 0 = unlimited.", Range::closed(0, 1e7).in(quantity::length)};
   SFTime transitionTime{this, "transitionTime", Access::InputOutput, Time{1.0},
                         "Seconds a viewpoint transition takes. Accepted; not acted on by MillSim.", Range::closed(0, 1e6)};
   MFString transitionType{this, "transitionType", Access::InputOutput, {"LINEAR"},

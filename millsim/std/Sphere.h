@@ -8,7 +8,7 @@ public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
 
-  SFFloat radius{this, "radius", Access::InitializeOnly, 1.f, "Radius (m).", Range::openClosed(0, 1e4)};
+  SFFloat radius{this, "radius", Access::InitializeOnly, 1.f, "Radius (m).", Range::openClosed(0, 1e4).in(quantity::length)};
   SFBool solid{this, "solid", Access::InitializeOnly, true, "Whether back faces may be culled."};
 };
 

@@ -32,7 +32,7 @@ public:
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
                    "Density of air; values at or below it are stored as the sparse background.", Range::closed(-1e9, 1e9)};
   SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
-                    "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::closed(0, 1)};
+                    "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::closed(0, 1).in(quantity::length)};
   MFNodeOf<Tissue> tissues{this, "tissues", Access::InitializeOnly,
                            "The volume's materials (Tissue nodes): the first that matches a voxel is its tissue; "
                            "material no tissue matches is cut with hardness 1."};

@@ -153,6 +153,7 @@ std::vector<ProtoFieldDecl> readProtoFields(Document& doc, const xmlNode* parent
       continue;
     }
     f.name = doc.value(name);
+    f.units = doc.units;
     const std::string typeName = doc.value(type), accessText = doc.value(access);
     auto t = fieldTypeFromName(typeName);
     if (!t) {

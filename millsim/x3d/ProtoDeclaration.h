@@ -25,6 +25,7 @@ struct ProtoFieldDecl {
   std::optional<std::string> value;  // the default as written (not for SFNode/MFNode)
   const xmlNode* element = nullptr;  // its child elements are an SFNode/MFNode field's default nodes
   SourceLocation where;
+  UnitScale units;  // the declaring file's units, in which the default is written
 };
 
 struct ProtoScope;

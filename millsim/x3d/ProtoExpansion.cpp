@@ -25,6 +25,7 @@ ProtoInstanceInterface::ProtoInstanceInterface(std::shared_ptr<ProtoDecl> proto)
     i.decl = &f;
     i.value = f.value;
     i.valueAt = f.where;
+    i.valueUnits = f.units;
   }
 }
 
@@ -43,7 +44,7 @@ std::string ProtoInstanceInterface::unknownField(const std::string& name) const 
 
 InstanceField* ProtoInstanceInterface::setValue(const std::string& name, const std::optional<std::string>& value,
                                                 const SourceLocation& nameAt, const SourceLocation& valueAt,
-                                                DiagnosticSink& sink) {
+                                                const UnitScale& units, DiagnosticSink& sink) {
   InstanceField* f = field(name);
   if (!f) {
     sink.error(nameAt, "fieldValue: " + unknownField(name));
@@ -77,6 +78,7 @@ InstanceField* ProtoInstanceInterface::setValue(const std::string& name, const s
   }
   f->value = value;
   f->valueAt = valueAt;
+  f->valueUnits = units;
   return f;
 }
 
@@ -125,7 +127,7 @@ void ProtoInstanceInterface::connect(Node& node, const std::string& nodeField, c
   }
   if (!f->value) return;
   try {
-    inner->setFromString(*f->value);
+    inner->setFromSceneText(*f->value, f->valueUnits);
   } catch (const ValueError& e) {
     sink.error(f->valueAt, "bad value '" + shown(*f->value) + "' for field '" + protoField + "' of proto '" +
                                proto_->name + "' (IS " + node.typeName() + "." + nodeField + "): " + e.what());
@@ -155,6 +157,7 @@ InstanceField* ProtoInstanceInterface::connectNested(InstanceField& inner, const
       inner.value = f->value;
     }
     inner.valueAt = f->valueAt;
+    inner.valueUnits = f->valueUnits;
   }
   return f;
 }

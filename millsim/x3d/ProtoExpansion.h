@@ -23,6 +23,7 @@ struct InstanceField {
   std::vector<std::shared_ptr<Node>> nodes;  // SFNode/MFNode values
   bool nodesGiven = false;                   // a fieldValue gave the nodes (else the default is read)
   SourceLocation valueAt;                    // where the value was written
+  UnitScale valueUnits;                      // the units of the file it was written in
   std::vector<Field*> inner;                 // the fields IS connects to this one
 };
 
@@ -41,9 +42,11 @@ public:
   std::map<std::string, InstanceField, std::less<>>& fields() { return fields_; }
 
   // <fieldValue name value> on the instance: checks the field exists, can take
-  // a value and that the value has the field's type. Returns the field set, or null after an error.
+  // a value and that the value has the field's type. `units` are those of the
+  // file that wrote it. Returns the field set, or null after an error.
   InstanceField* setValue(const std::string& name, const std::optional<std::string>& value,
-                          const SourceLocation& nameAt, const SourceLocation& valueAt, DiagnosticSink& sink);
+                          const SourceLocation& nameAt, const SourceLocation& valueAt, const UnitScale& units,
+                          DiagnosticSink& sink);
 
   // <connect nodeField protoField> inside the body: `node`'s field `nodeField`
   // IS this instance's field `protoField`.

@@ -176,7 +176,8 @@ void ProtoReader::readFieldValue(Document& doc, xmlNode* el, std::size_t tag, co
   std::optional<std::string> value;
   if (v) value = doc.value(v);
   InstanceField* f =
-      inst.setValue(name, value, doc.locateAttr(tag, "name", loc), v ? doc.locateAttr(tag, "value", loc) : loc, sink_);
+      inst.setValue(name, value, doc.locateAttr(tag, "name", loc), v ? doc.locateAttr(tag, "value", loc) : loc,
+                    doc.units, sink_);
   for (xmlNode* c = el->children; c && f && !sink_.full(); c = c->next) {
     if (!host_.isElement(doc, c, "fieldValue")) continue;
     std::size_t childTag;

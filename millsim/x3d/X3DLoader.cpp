@@ -256,8 +256,8 @@ private:
     }
   }
 
-  // MillSim reads every value in SI units and does not convert yet: a unit
-  // other than the SI one is refused rather than ignored.
+  // X3D 4.0 units: from here on the file's values of that category (and of
+  // quantities derived from it, e.g. N/m) are converted to SI as they are read.
   void readUnit(Document& doc, xmlNode* el, std::size_t tag, const SourceLocation& loc) {
     UnitStatement u;
     const xmlAttr* attrs[3] = {findAttr(el, "category"), findAttr(el, "name"), findAttr(el, "conversionFactor")};
@@ -271,13 +271,16 @@ private:
       sink_.error(locateAttr(doc, tag, culprit, loc), "invalid <unit> statement: " + *bad);
       return;
     }
-    if (unitFactor(u) == 1.0) return;  // the SI unit itself changes nothing
-    static const std::map<std::string, std::string, std::less<>> si = {
-        {"angle", "radians"}, {"force", "newtons"}, {"length", "metres"}, {"mass", "kilograms"}};
-    sink_.error(loc, "<unit category='" + u.category + "' name='" + u.name + "' conversionFactor='" +
-                         u.conversionFactor + "'> is not supported: MillSim does not convert " + u.category +
-                         " values yet and reads them in " + si.at(u.category) +
-                         "; write the values in SI units and remove the statement");
+    if (!doc.unitCategories.insert(u.category).second) {
+      sink_.error(locateAttr(doc, tag, "category", loc),
+                  "a second <unit> statement for category '" + u.category + "'; X3D allows one per category");
+      return;
+    }
+    double& factor = u.category == "length" ? doc.units.length
+                     : u.category == "angle" ? doc.units.angle
+                     : u.category == "mass"  ? doc.units.mass
+                                             : doc.units.force;
+    factor = unitFactor(u);
   }
 
   // Comments and whitespace are fine anywhere; other text is a mistake.
@@ -524,12 +527,14 @@ private:
       }
       const std::string value = attrValue(doc.xml, a);
       try {
-        f->setFromString(value);
+        f->setFromSceneText(value, doc.units);
       } catch (const ValueError& e) {
         if (readUnquotedString(*f, value, node, at)) continue;
         std::string shown = value.size() > 40 ? value.substr(0, 37) + "..." : value;
+        const bool converted = !doc.units.si() && f->range() && !f->range()->quantity.dimensionless();
         sink_.error(at, "bad value '" + shown + "' for " + std::string(fieldTypeName(f->type())) + " field '" +
-                            std::string(n) + "' of " + node.typeName() + ": " + e.what());
+                            std::string(n) + "' of " + node.typeName() + ": " + e.what() +
+                            (converted ? " (in SI units, after converting from the file's <unit> statements)" : ""));
       }
     }
   }

@@ -6,11 +6,13 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <string_view>
 
 #include "millsim/core/Node.h"
+#include "millsim/core/Quantity.h"
 #include "millsim/x3d/SourceText.h"
 
 namespace millsim {
@@ -43,6 +45,10 @@ struct Document {
   // once per instance, after the source cursor has passed it, so its tags
   // are found when its ProtoDeclare is read (see locateSubtree).
   std::map<const xmlNode*, std::size_t> tagOffsets;
+  // The file's own <unit> statements: its values are converted to SI with
+  // these, so an Inline or an ExternProto file keeps its own units.
+  UnitScale units;
+  std::set<std::string, std::less<>> unitCategories;  // those a <unit> statement set
 
   Document(SourceText text, std::filesystem::path folder, DefMap* names)
       : src(std::move(text)), dir(std::move(folder)), defs(names) {}

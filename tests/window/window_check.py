@@ -39,8 +39,9 @@ def start(millsim, scene, out, *extra, env=None):
            *extra]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=dict(os.environ, **(env or {})))
-    # The window appears once the renderers are compiled and the meshes built.
-    deadline = time.time() + 60
+    # The window appears once the renderers are compiled and the meshes built:
+    # about 5 s alone, but a loaded 2-core box once took over 60 s.
+    deadline = time.time() + 150
     window = ""
     while time.time() < deadline and proc.poll() is None:
         found = subprocess.run(["xdotool", "search", "--onlyvisible", "--pid", str(proc.pid)], capture_output=True,
@@ -52,7 +53,7 @@ def start(millsim, scene, out, *extra, env=None):
     if not window:
         output = proc.communicate(timeout=60)[0] if proc.poll() is None else proc.stdout.read()
         print(output)
-        sys.exit("window_check: no window of millsim appeared within 60 s")
+        sys.exit("window_check: no window of millsim appeared within 150 s")
     time.sleep(0.8)  # a few frames drawn
     return proc, window, log
 
