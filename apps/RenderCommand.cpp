@@ -17,6 +17,7 @@
 #include "millsim/graphics/GraphicsModule.h"
 #include "millsim/graphics/SceneRenderer.h"
 #include "millsim/run/Replay.h"
+#include "millsim/std/EventClock.h"
 #include "millsim/std/Viewpoint.h"
 #include "millsim/x3d/X3DLoader.h"
 
@@ -38,7 +39,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default 512x512)");
   cmd->add_option("--trajectory", args->trajectory,
                   "Trajectory CSV to replay (default: the scene device's url, if any)");
-  cmd->add_option("--at", args->at, "Trajectory time to stop at, in seconds (default: its end)")
+  cmd->add_option("--at", args->at, "Trajectory time to stop at, in seconds (default: its end); without a trajectory, the time the scene's TimeSensors have reached")
       ->check(finiteIn(0, 1e6, "s"));
   cmd->add_option("--renderer", args->options.renderer, "Use a default haptics renderer of this type");
   cmd->add_option("--viewpoint", args->viewpoint, "DEF name of the Viewpoint to look through (default: the first)");
@@ -77,8 +78,14 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         tool = toolView(geometry, s.last);
         std::cout << "replayed " << s.frames << " frames with " << s.rendererName << ", removed "
                   << s.removedVolume * 1e9 << " mm³\n";
-      } else if (std::isfinite(args->at)) {
-        throw std::invalid_argument("--at needs a trajectory: pass --trajectory or give the scene's device a url");
+      } else {
+        // No trajectory: the scene's events alone, in simulated time from 0 (replay ticks them otherwise).
+        EventClock events(*r.scene);
+        if (std::isfinite(args->at) && events.empty())
+          throw std::invalid_argument(
+              "--at needs a trajectory or a scene that animates: pass --trajectory, give the scene's device a url, "
+              "or add a TimeSensor");
+        events.advanceTo(std::isfinite(args->at) ? args->at : 0.0);
       }
 
       RendererOptions ro;

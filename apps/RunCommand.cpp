@@ -34,9 +34,10 @@
 #include "millsim/run/LiveUpdates.h"
 #include "millsim/run/RendererPool.h"
 #include "millsim/run/RunSetup.h"
+#include "millsim/graphics/DrawnFields.h"
 #include "millsim/graphics/SceneView.h"
 #include "millsim/lesson/RegionAccounting.h"
-#include "millsim/std/ClipPlane.h"
+#include "millsim/std/EventClock.h"
 #include "millsim/std/WorldInfo.h"
 #include "millsim/window/WindowModule.h"
 #include "millsim/volume/VolumeObject.h"
@@ -206,6 +207,13 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       std::cout << "running " << deviceName << (pool ? " until the window is closed or Ctrl-C\n" : " until Ctrl-C\n")
                 << std::flush;
 
+    // The scene's events (TimeSensors, KeySensors and what they drive) tick on
+    // this thread, in the run's own time; the first tick, at 0, is before
+    // graphics reads the scene, so the first frame shows it.
+    EventClock events(*r.scene);
+    events.tick(0.0);
+    DrawnFields drawn(*r.scene);
+
     // Graphics first: its context and meshes are ready (or it failed)
     // before the first haptic frame, and the scene is not touched by this
     // thread until then.
@@ -228,18 +236,11 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     auto previousInt = std::signal(SIGINT, onInterrupt);
     auto previousTerm = std::signal(SIGTERM, onInterrupt);
     loop->start(duration);
-    // The scene thread's part: drain the log, update the device fields, and
-    // with a window, feed its HUD and do what its keys asked.
+    const auto runStart = std::chrono::steady_clock::now();
+    // The scene thread's part: drain the log, update the device fields, tick
+    // the scene's events, and with a window, feed its HUD and do what its keys asked.
     std::string status;
     LiveUpdates live(run, *loop);
-    // ClipPlanes cut the drawing only: a change (by a route) goes to the window.
-    auto clipSignature = [&] {
-      std::string sig;
-      for (const ClipPlane* c : r.scene->nodesOfType<ClipPlane>())
-        sig += c->plane.toString() + (c->enabled.get() ? "+" : "-") + ";";
-      return sig;
-    };
-    std::string clips = pool ? clipSignature() : std::string();
     while (!loop->finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       if (gInterrupted.load() || controls.closed()) loop->stop();
@@ -262,18 +263,22 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
           // A cone needs its narrow end narrower than the head: halve it if a round burr's dimensions do not say so.
           if (t.tipEndRadius.get() > t.tipRadius.get()) t.tipEndRadius.set(0.5f * t.tipRadius.get());
         }
+        if (c.kind == WindowCommand::Kind::Key && events.hasKeySensors())
+          events.key(KeyEvent{c.press, c.character, c.index, KeyEvent::Modifier(int(c.modifier))});
       }
+      if (!events.empty())
+        events.tick(std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count());
       if (std::string s = live.poll(); !s.empty()) status = s;
+      // What graphics draws follows the events, routes and keys: a new view when a drawn field changed.
+      if (graphics && drawn.changed()) {
+        graphics->publishView(readSceneView(*r.scene));
+        drawn.mark();
+      }
       if (!pool) {
         loop->collectRetired();
         continue;
       }
       pool->collect(*loop);
-      if (std::string now = clipSignature(); now != clips) {
-        clips = now;
-        controls.setSceneCuts(readSceneView(*r.scene));
-        status = "the scene's cut planes changed";
-      }
       if (std::string s = pool->followDeviceField(*loop); !s.empty()) status = s;
       if (std::string s = pool->followRendererFields(*loop); !s.empty()) status = s;
       if (std::string s = pool->followTool(*loop); !s.empty()) status = s;

@@ -72,6 +72,7 @@ void RunGraphics::run() {
   paceFrames(
       [&](std::size_t i, const std::vector<BlockOrigin>& blocks) { renderer->volumeChanged(i, blocks); },
       [&] {
+        if (views_.hasNew()) renderer->sceneChanged(views_.read());
         const FrameRecord& f = loop_.newest().read();
         renderer->render(f.frame > 0 || f.t > 0.0 ? std::optional<ToolView>(toolView(f.tool, f.out)) : std::nullopt);
         renderer->readPixels();  // finish the frame, as a display copy would
@@ -110,7 +111,7 @@ void RunGraphics::runWindow() {
              [&] {
                if (!window->pollEvents()) options_.controls->close();
                options_.controls->post(window->takeCommands());
-               if (auto cuts = options_.controls->takeSceneCuts()) window->sceneCutsChanged(*cuts);
+               if (views_.hasNew()) window->sceneChanged(views_.read());
                if (options_.pointer) {
                  const PointerState p = window->pointer();
                  options_.pointer->set(p.pose, p.button);

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "millsim/devices/MouseDevice.h"
+#include "millsim/driver/TripleBuffer.h"
+#include "millsim/graphics/SceneView.h"
 #include "millsim/graphics/Image.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/run/HapticLoop.h"
@@ -74,6 +76,14 @@ public:
   // Scene thread, after the haptic loop ended: draws the final frame, writes
   // the screenshot and joins. Throws GraphicsError if the screenshot fails.
   RunGraphicsStats stop();
+  // Scene thread, while running: the scene's drawn fields changed (an event
+  // moved a Transform, chose a Switch child, changed a Material or a
+  // ClipPlane). Wait-free: a triple buffer, whose newest view the graphics
+  // thread adopts at its next frame (SceneDrawer::adoptView).
+  void publishView(SceneView view) {
+    views_.back() = std::move(view);
+    views_.publish();
+  }
 
 private:
   void run();
@@ -89,6 +99,7 @@ private:
   HapticLoop& loop_;
   ToolGeometry tool_;
   RunGraphicsOptions options_;
+  TripleBuffer<SceneView> views_;
   std::vector<std::unique_ptr<BlockChannel>> channels_;
   std::vector<std::unique_ptr<VolumeReplica>> replicas_;
   std::chrono::steady_clock::time_point startTime_;

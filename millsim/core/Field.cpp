@@ -41,7 +41,9 @@ void Field::routeTo(Field& destination) {
   out_.push_back(&destination);
   destination.in_.push_back(this);
   // As in H3DAPI, a new route delivers the current value: the destination
-  // becomes stale and pulls on its next read.
+  // becomes stale and pulls on its next read (unless the source never sent an
+  // event: an event node's output before its first event is no value, and
+  // must not overwrite what the scene wrote, e.g. a Switch's whichChoice).
   destination.markStale(++eventClock);
 }
 
@@ -73,7 +75,7 @@ void Field::pull() {
   for (const Field* f : in_) f->refresh();  // sources first, so their event stamps are current
   const Field* newest = nullptr;
   for (const Field* f : in_)
-    if (!newest || f->lastEvent() > newest->lastEvent()) newest = f;
+    if (f->lastEvent() > 0 && (!newest || f->lastEvent() > newest->lastEvent())) newest = f;
   if (newest) {
     assignFrom(*newest);
     lastEvent_ = newest->lastEvent();

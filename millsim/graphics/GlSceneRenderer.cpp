@@ -71,6 +71,7 @@ public:
     drawer_->rebuildVolume(index);
   }
 
+  bool sceneChanged(const SceneView& fresh) override { return drawer_->adoptView(fresh); }
   void setView(const ViewSpec& view) override { drawer_->setView(view); }
   ViewSpec view() const override { return drawer_->view(); }
   Camera camera() const override { return drawer_->camera(); }

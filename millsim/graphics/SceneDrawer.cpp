@@ -104,6 +104,13 @@ bool SceneDrawer::adoptCuts(const SceneView& fresh) {
   return true;
 }
 
+bool SceneDrawer::adoptView(const SceneView& fresh) {
+  if (fresh.volumes.size() != scene_.volumes.size()) return false;
+  scene_.shapes = fresh.shapes;  // first, so that adoptCuts sees the same shapes
+  scene_.background = fresh.background;
+  return adoptCuts(fresh);
+}
+
 ClipPlanes SceneDrawer::planesFor(const std::vector<int>& cutIndices, bool volume) const {
   ClipPlanes out;
   for (int i : cutIndices) {

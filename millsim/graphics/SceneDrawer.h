@@ -81,6 +81,12 @@ public:
   // the user's own plane. False (and nothing changed) if `fresh` has other
   // volumes or shapes than this drawer.
   bool adoptCuts(const SceneView& fresh);
+  // The scene changed while running (an event moved a Transform, chose
+  // another Switch child, changed a Material or a ClipPlane): takes `fresh`'s
+  // shapes, background and cut planes (as adoptCuts). Volumes stay where they
+  // were meshed (placement is fixed for a run). False (and nothing changed)
+  // if `fresh` has another number of volumes.
+  bool adoptView(const SceneView& fresh);
   // SceneView::addUserCut: the user's own plane, facing `towards`.
   int addUserCut(const glm::dvec3& towards) { return scene_.addUserCut(towards); }
 

@@ -66,6 +66,9 @@ public:
   // Re-meshes a whole volume (when which blocks changed is not known).
   virtual void rebuildVolume(std::size_t index) = 0;
 
+  // The scene's drawn fields changed (SceneDrawer::adoptView); false if `fresh` has other volumes.
+  virtual bool sceneChanged(const SceneView& fresh) = 0;
+
   // Camera: starts as the scene's Viewpoint; set it to zoom or rotate.
   virtual void setView(const ViewSpec& view) = 0;
   virtual ViewSpec view() const = 0;

@@ -8,6 +8,7 @@
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/run/FrameLog.h"
 #include "millsim/run/RendererPool.h"
+#include "millsim/std/EventClock.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/volume/VoxelScene.h"
 
@@ -82,9 +83,12 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
   if (options.onLoop) options.onLoop(loop);
   FrameLogWriter writer(log);
   if (options.onFrame) writer.observe(options.onFrame);
+  // The scene's events (TimeSensors, interpolators) in the same simulated time, as the scene thread of a run.
+  EventClock events(scene);
   for (long n = 0; n < frames; ++n) {
     loop.stepSimulated();
     writer.drain(loop);
+    if (!events.empty()) events.advanceTo(double(n) / run.settings.rate);
   }
   return finishReplay(loop, writer, run, rendererName, options);
 }
@@ -124,6 +128,7 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
   FrameLogWriter writer(log);
   if (options.onFrame) writer.observe(options.onFrame);
   int renderer = frames.front().renderer, tool = frames.front().tool;
+  EventClock events(scene);
   for (const RecordedFrame& f : frames) {
     if (f.t > options.until) break;
     if (swaps && f.renderer != renderer) {
@@ -142,6 +147,7 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
     }
     loop.stepRecorded(f.t, f.periodUs, f.device, f.button);
     writer.drain(loop);
+    if (!events.empty()) events.advanceTo(f.t - frames.front().t);
   }
   if (pool) pool->collect(loop);
   return finishReplay(loop, writer, run, rendererName, options);

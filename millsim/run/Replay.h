@@ -5,7 +5,9 @@
 // plays it open loop, a HandDevice follows it closed loop, a hardware device
 // is replaced by the trajectory. The same scene, trajectory and options give
 // the same bytes on every run (compute time is only logged on request,
-// because wall-clock time is the one thing that cannot repeat).
+// because wall-clock time is the one thing that cannot repeat). The scene's
+// events (TimeSensors and what they drive, millsim/std/EventClock.h) tick
+// every 20 ms of the same simulated time, from 0 at the first frame.
 #include <functional>
 #include <limits>
 #include <memory>

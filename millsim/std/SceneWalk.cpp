@@ -7,6 +7,7 @@
 
 #include "millsim/core/Scene.h"
 #include "millsim/std/ClipPlane.h"
+#include "millsim/std/Switch.h"
 #include "millsim/std/Transform.h"
 
 namespace millsim {
@@ -25,15 +26,20 @@ void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& c
     auto* nf = dynamic_cast<NodeFieldBase*>(f);
     if (!nf) continue;
     const auto children = nf->nodes();
+    // A Switch's children other than the chosen one are walked (volumes keep
+    // their order for the haptic side) but not shown, and do not clip.
+    const auto* sw = dynamic_cast<const Switch*>(&n);
+    const Node* chosen = sw && nf == &sw->children ? sw->chosen() : nullptr;
+    auto showsChild = [&](const Node& child) { return !sw || nf != &sw->children || &child == chosen; };
     std::vector<glm::dvec4> scoped = clips;
     for (const auto& child : children)
-      if (auto* cp = dynamic_cast<ClipPlane*>(child.get()); cp && cp->enabled.get()) {
+      if (auto* cp = dynamic_cast<ClipPlane*>(child.get()); cp && cp->enabled.get() && showsChild(*cp)) {
         // Planes transform by the inverse transpose of the node's frame.
         const glm::dvec4 p = glm::transpose(glm::inverse(m)) * glm::dvec4(cp->plane.get());
         const double len = glm::length(glm::dvec3(p));
         if (len > 0.0 && std::isfinite(len)) scoped.push_back(p / len);
       }
-    for (const auto& child : children) walk(*child, m, scoped, shown, translucent, visit);
+    for (const auto& child : children) walk(*child, m, scoped, shown && showsChild(*child), translucent, visit);
   }
 }
 

@@ -20,7 +20,8 @@ struct WalkFrame {
   // World-space planes (a, b, c, d) with unit normals; a point p stays when
   // dot(plane, (p, 1)) >= 0. A ClipPlane clips its siblings and their descendants.
   const std::vector<glm::dvec4>* clipPlanes = nullptr;
-  // False under a node whose showsDescendants() is false: not to be drawn.
+  // False under a node whose showsDescendants() is false, or under a Switch
+  // child other than the chosen one: not to be drawn.
   bool shown = true;
   // True under a node whose showsDescendantsTranslucent() is true (a visible assessment region).
   bool translucent = false;

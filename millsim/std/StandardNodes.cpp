@@ -2,16 +2,25 @@
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/std/Appearance.h"
 #include "millsim/std/Background.h"
+#include "millsim/std/BooleanFilter.h"
+#include "millsim/std/BooleanToggle.h"
 #include "millsim/std/Box.h"
 #include "millsim/std/ClipPlane.h"
 #include "millsim/std/Cylinder.h"
 #include "millsim/std/Group.h"
 #include "millsim/std/ImportLibrary.h"
 #include "millsim/std/Inline.h"
+#include "millsim/std/IntegerTrigger.h"
+#include "millsim/std/KeySensor.h"
 #include "millsim/std/Material.h"
 #include "millsim/std/NavigationInfo.h"
+#include "millsim/std/OrientationInterpolator.h"
+#include "millsim/std/PositionInterpolator.h"
+#include "millsim/std/ScalarInterpolator.h"
 #include "millsim/std/Shape.h"
 #include "millsim/std/Sphere.h"
+#include "millsim/std/Switch.h"
+#include "millsim/std/TimeSensor.h"
 #include "millsim/std/Transform.h"
 #include "millsim/std/Viewpoint.h"
 #include "millsim/std/WorldInfo.h"
@@ -22,7 +31,11 @@ void registerStandardNodes(NodeRegistry& r) {
   for (const NodeType* t : {&Appearance::type(), &Background::type(), &Box::type(), &ClipPlane::type(), &Cylinder::type(),
                             &Group::type(), &ImportLibrary::type(), &Inline::type(), &Material::type(),
                             &NavigationInfo::type(), &Shape::type(), &Sphere::type(), &Transform::type(),
-                            &Viewpoint::type(), &WorldInfo::type()})
+                            &Viewpoint::type(), &WorldInfo::type(),
+                            // The event nodes and Switch (driven by EventClock, drawn through SceneWalk).
+                            &BooleanFilter::type(), &BooleanToggle::type(), &IntegerTrigger::type(), &KeySensor::type(),
+                            &OrientationInterpolator::type(), &PositionInterpolator::type(),
+                            &ScalarInterpolator::type(), &Switch::type(), &TimeSensor::type()})
     r.add(*t);
 }
 

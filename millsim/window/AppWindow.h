@@ -54,8 +54,13 @@ struct HudState {
 
 // Something the window asks the scene thread to do.
 struct WindowCommand {
-  enum class Kind { SelectRenderer, ToggleEnabled, ToggleMillable, NextBurrShape } kind;
-  int index = 0;  // SelectRenderer: 0 for key 1, …
+  enum class Kind { SelectRenderer, ToggleEnabled, ToggleMillable, NextBurrShape, Key } kind;
+  int index = 0;  // SelectRenderer: 0 for key 1, …; Key: X3D's action key code (0: not an action key)
+  // Key: a key going down or up, for the scene's KeySensors (every key but
+  // Escape, as well as whatever the window itself does with it).
+  bool press = true;
+  std::string character;  // the key's character ("a", "A" with Shift, " "), empty for action and modifier keys
+  enum class Modifier { None, Shift, Control, Alt } modifier = Modifier::None;
 };
 
 // The mouse's tool, for a MouseDevice.
@@ -72,8 +77,9 @@ public:
   virtual std::vector<WindowCommand> takeCommands() = 0;
   virtual PointerState pointer() const = 0;
 
-  // The scene's ClipPlanes changed while running (SceneDrawer::adoptCuts).
-  virtual void sceneCutsChanged(const SceneView& fresh) = 0;
+  // The scene's drawn fields changed while running: Transforms, Switches,
+  // Materials, ClipPlanes (SceneDrawer::adoptView).
+  virtual void sceneChanged(const SceneView& fresh) = 0;
   // Milled blocks of volume `index` (as VolumeReplica::apply gives them).
   virtual void volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) = 0;
   // Draws the scene, the tools and the HUD, and shows the frame.

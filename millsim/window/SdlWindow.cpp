@@ -111,7 +111,11 @@ public:
         case SDL_WINDOWEVENT:
           if (e.window.event == SDL_WINDOWEVENT_CLOSE) open_ = false;
           break;
-        case SDL_KEYDOWN: key(e.key.keysym); break;
+        case SDL_KEYDOWN:
+          key(e.key.keysym);
+          forwardKey(e.key, true);
+          break;
+        case SDL_KEYUP: forwardKey(e.key, false); break;
         case SDL_MOUSEBUTTONDOWN:
         case SDL_MOUSEBUTTONUP: button(e.button); break;
         case SDL_MOUSEMOTION: motion(e.motion); break;
@@ -125,8 +129,8 @@ public:
   std::vector<WindowCommand> takeCommands() override { return std::exchange(commands_, {}); }
   PointerState pointer() const override { return {pointerTool_.pose(), leftHeld_ || spaceMilling_}; }
 
-  void sceneCutsChanged(const SceneView& fresh) override {
-    drawer_->adoptCuts(fresh);
+  void sceneChanged(const SceneView& fresh) override {
+    drawer_->adoptView(fresh);
     activeCut_ = std::clamp(activeCut_, 0, std::max(int(drawer_->cutPlanes().size()) - 1, 0));
   }
 
@@ -218,6 +222,36 @@ private:
     const ViewSpec current = examine_.view();
     examine_.reset(frameBounds(sv.boundsMin, sv.boundsMax, current.orientation, current.fieldOfView), sv.centre());
     framedByKey_ = true;
+  }
+
+  // Every key (but Escape, and auto-repeats) also goes to the scene's
+  // KeySensors as X3D names it: a character, an action key code or a modifier.
+  void forwardKey(const SDL_KeyboardEvent& e, bool press) {
+    if (e.repeat || ImGui::GetIO().WantCaptureKeyboard || e.keysym.sym == SDLK_ESCAPE) return;
+    WindowCommand c{WindowCommand::Kind::Key, 0};
+    c.press = press;
+    const SDL_Keycode s = e.keysym.sym;
+    if (s >= SDLK_F1 && s <= SDLK_F12) c.index = int(s - SDLK_F1) + 1;
+    else if (s == SDLK_HOME) c.index = 13;
+    else if (s == SDLK_END) c.index = 14;
+    else if (s == SDLK_PAGEUP) c.index = 15;
+    else if (s == SDLK_PAGEDOWN) c.index = 16;
+    else if (s == SDLK_UP) c.index = 17;
+    else if (s == SDLK_DOWN) c.index = 18;
+    else if (s == SDLK_LEFT) c.index = 19;
+    else if (s == SDLK_RIGHT) c.index = 20;
+    else if (s == SDLK_LSHIFT || s == SDLK_RSHIFT) c.modifier = WindowCommand::Modifier::Shift;
+    else if (s == SDLK_LCTRL || s == SDLK_RCTRL) c.modifier = WindowCommand::Modifier::Control;
+    else if (s == SDLK_LALT || s == SDLK_RALT) c.modifier = WindowCommand::Modifier::Alt;
+    else if (s >= 32 && s < 127) {
+      char ch = char(s);
+      if (ch >= 'a' && ch <= 'z' && ((e.keysym.mod & KMOD_SHIFT) != 0) != ((e.keysym.mod & KMOD_CAPS) != 0))
+        ch = char(ch - 'a' + 'A');
+      c.character = std::string(1, ch);
+    } else {
+      return;  // a key X3D has no name for
+    }
+    commands_.push_back(std::move(c));
   }
 
   void key(const SDL_Keysym& k) {

@@ -12,6 +12,8 @@
 #include "millsim/graphics/PointerTool.h"
 #include "millsim/graphics/SceneDrawer.h"
 #include "millsim/std/ClipPlane.h"
+#include "millsim/std/EventClock.h"
+#include "millsim/std/Switch.h"
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/SceneRenderer.h"
 #include "millsim/volume/VoxelScene.h"
@@ -375,4 +377,54 @@ TEST(SceneRenderer, VisibleRegionsAreSeeThrough) {
   const auto blended = centreOf(halfRed);
   EXPECT_GT(blended.r, 40);
   EXPECT_GT(blended.g, 40) << "Material.transparency is drawn";
+}
+
+// What is drawn follows the event cascade: a TimeSensor moves a red ball
+// from left to right through a PositionInterpolator, the renderer adopts the
+// new view (as the graphics thread of a run does), and a Switch set to -1
+// hides it.
+TEST(SceneRenderer, DrawingFollowsAnAnimatedTransformAndASwitch) {
+  ScratchDir dir;
+  LoadResult r = loadSceneFile(dir.write("anim.x3d", x3d(R"(
+    <Viewpoint position="0 0 1" fieldOfView="0.8"/>
+    <Background skyColor="0 0 0"/>
+    <Switch DEF="Show" whichChoice="0">
+      <Transform DEF="Mover" translation="0 0.3 0">
+        <Shape><Appearance><Material diffuseColor="1 0 0" emissiveColor="1 0 0"/></Appearance><Sphere radius="0.05"/></Shape>
+      </Transform>
+    </Switch>
+    <TimeSensor DEF="Clock" cycleInterval="1"/>
+    <PositionInterpolator DEF="Path" key="0 1" keyValue="-0.2 0 0, 0.2 0 0"/>
+    <ROUTE fromNode="Clock" fromField="fraction_changed" toNode="Path" toField="set_fraction"/>
+    <ROUTE fromNode="Path" fromField="value_changed" toNode="Mover" toField="set_translation"/>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  // Mean x of the red pixels, and how many there are.
+  auto red = [](const Image& img) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        if (const auto p = img.at(x, y); p.r > 150 && p.g < 80 && p.b < 80) sum += x + 0.5, ++n;
+    return std::pair{n ? sum / n : -1.0, n};
+  };
+  EventClock events(*r.scene);
+  events.tick(0.0);
+  auto renderer = createSceneRenderer(*r.scene, sized(96));
+  renderer->render(std::nullopt);
+  const auto [left, leftCount] = red(renderer->readPixels());
+  ASSERT_GT(leftCount, 20);
+  EXPECT_NEAR(left, renderer->camera().project({-0.2, 0.0, 0.0}).x, 2.0) << "at t = 0 the ball is on the left";
+
+  events.advanceTo(1.0);
+  ASSERT_TRUE(renderer->sceneChanged(readSceneView(*r.scene)));
+  renderer->render(std::nullopt);
+  const auto [right, rightCount] = red(renderer->readPixels());
+  ASSERT_GT(rightCount, 20);
+  EXPECT_NEAR(right, renderer->camera().project({0.2, 0.0, 0.0}).x, 2.0) << "at t = 1 s it is on the right";
+
+  dynamic_cast<Switch&>(*r.scene->def("Show")).whichChoice.set(-1);
+  ASSERT_TRUE(renderer->sceneChanged(readSceneView(*r.scene)));
+  renderer->render(std::nullopt);
+  EXPECT_EQ(red(renderer->readPixels()).second, 0) << "the Switch chooses nothing";
 }

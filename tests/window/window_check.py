@@ -5,6 +5,7 @@
   window_check.py swap MILLSIM SCENE OUTDIR
   window_check.py mouse MILLSIM SCENE OUTDIR
   window_check.py stall MILLSIM SCENE OUTDIR
+  window_check.py key-sensor MILLSIM SCENE OUTDIR
 
 Each starts `millsim run` with a window, drives it with xdotool as a person
 would, and checks what the window showed (captured with ImageMagick's
@@ -183,14 +184,32 @@ def stall(millsim, scene, out):
           f"and the window really was stalled ({window_frames[0].strip() if window_frames else 'no window line'})")
 
 
+def green_fraction(img):
+    return float(np.mean((img[..., 1] > 0.5) & (img[..., 0] < 0.3) & (img[..., 2] < 0.3)))
+
+
+def key_sensor(millsim, scene, out):
+    # tests/data/window/key-switch.x3d: a key press reaches the KeySensor, whose
+    # routes set the Switch to nothing, and the window stops drawing the green box.
+    proc, window, log = start(millsim, scene, out, "--duration", "6")
+    before = capture(window, os.path.join(out, "before.png"))
+    check(green_fraction(before) > 0.01, f"the green box is drawn at first ({green_fraction(before):.3f} of the window)")
+    xdo("key", "--window", window, "t")
+    time.sleep(1.5)
+    after = capture(window, os.path.join(out, "after.png"))
+    check(green_fraction(after) < 0.001, f"after a key press it is not ({green_fraction(after):.4f} of the window)")
+    finish(proc)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "stall"):
+    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "stall", "key-sensor"):
         sys.exit(__doc__)
     mode, millsim, scene, out = sys.argv[1:]
     os.makedirs(out, exist_ok=True)
     for name in os.listdir(out):
         os.remove(os.path.join(out, name))
-    {"view-and-swap": view_and_swap, "swap": swap, "mouse": mouse, "stall": stall}[mode](millsim, scene, out)
+    {"view-and-swap": view_and_swap, "swap": swap, "mouse": mouse, "stall": stall,
+     "key-sensor": key_sensor}[mode](millsim, scene, out)
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)
