@@ -13,7 +13,8 @@ public:
 
   SFFloat set_fraction{this, "set_fraction", Access::InputOnly, 0.f, "Where to interpolate, among the keys."};
   MFFloat key{this, "key", Access::InputOutput, {}, "Fractions, in non-decreasing order.", Range::closed(-1e6, 1e6)};
-  MFVec3f keyValue{this, "keyValue", Access::InputOutput, {}, "The position at each key (m).", Range::closed(-1e4, 1e4)};
+  MFVec3f keyValue{this, "keyValue", Access::InputOutput, {}, "The position at each key (m).",
+                   Range::closed(-1e4, 1e4).in(quantity::length)};
   SFVec3f value_changed{this, "value_changed", Access::OutputOnly, glm::vec3(0.f),
                         "The interpolated position (m), sent per set_fraction."};
 
