@@ -82,6 +82,8 @@ const AudioModule kModule{kAudioAbiVersion, &openOutput};
 
 }  // namespace millsim
 
-extern "C" __attribute__((visibility("default"))) const millsim::AudioModule* millsim_audio_module() {
+// Typed as the loader calls it (SiblingLibrary: const void* (*)()): a call through
+// another function type is undefined behaviour (clang's -fsanitize=function).
+extern "C" __attribute__((visibility("default"))) const void* millsim_audio_module() {
   return &millsim::kModule;
 }

@@ -15,6 +15,8 @@ const millsim::GraphicsModule kModule{millsim::kGraphicsAbiVersion, &create, &pn
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const millsim::GraphicsModule* millsim_graphics_module() {
+// Typed as the loader calls it (SiblingLibrary: const void* (*)()): a call through
+// another function type is undefined behaviour (clang's -fsanitize=function).
+extern "C" __attribute__((visibility("default"))) const void* millsim_graphics_module() {
   return &kModule;
 }

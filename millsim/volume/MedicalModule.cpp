@@ -8,6 +8,8 @@ const millsim::MedicalModule kModule{millsim::kMedicalAbiVersion, &millsim::medi
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const millsim::MedicalModule* millsim_medical_module() {
+// Typed as the loader calls it (SiblingLibrary: const void* (*)()): a call through
+// another function type is undefined behaviour (clang's -fsanitize=function).
+extern "C" __attribute__((visibility("default"))) const void* millsim_medical_module() {
   return &kModule;
 }

@@ -336,8 +336,8 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
           const float tile = tree.getValue(origin);
           for (int k = lo.z; k <= hi.z; ++k)
             for (int j = lo.y; j <= hi.y; ++j) {
-              float* row = &fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x - fLo.x];
-              std::fill(row + lo.x, row + hi.x + 1, tile);
+              float* row = fineScratch_.data() + (std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x;
+              std::fill(row + (lo.x - fLo.x), row + (hi.x - fLo.x) + 1, tile);
             }
           continue;
         }
@@ -346,9 +346,11 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
         const float* data = leaf->buffer().data();
         for (int k = lo.z; k <= hi.z; ++k)
           for (int j = lo.y; j <= hi.y; ++j) {
-            float* row = &fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x - fLo.x];
+            // The row starts at x = fLo.x: a pointer rebased to x = 0 could
+            // point before the buffer, which is undefined (clang UBSan).
+            float* row = fineScratch_.data() + (std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x;
             const float* column = data + ((j & 7) << 3) + (k & 7);
-            for (int i = lo.x; i <= hi.x; ++i) row[i] = column[(i & 7) << 6];
+            for (int i = lo.x; i <= hi.x; ++i) row[i - fLo.x] = column[(i & 7) << 6];
           }
       }
   auto fine = [&](int i, int j, int k) -> const float& {

@@ -390,6 +390,8 @@ const WindowModule kModule{kWindowAbiVersion, &open};
 
 }  // namespace millsim
 
-extern "C" __attribute__((visibility("default"))) const millsim::WindowModule* millsim_window_module() {
+// Typed as the loader calls it (SiblingLibrary: const void* (*)()): a call through
+// another function type is undefined behaviour (clang's -fsanitize=function).
+extern "C" __attribute__((visibility("default"))) const void* millsim_window_module() {
   return &millsim::kModule;
 }
