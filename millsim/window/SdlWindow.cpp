@@ -26,6 +26,15 @@ namespace millsim {
 
 namespace {
 
+// A command with its other fields at their defaults (no partial aggregate
+// initialiser, which -Wmissing-field-initializers reports).
+WindowCommand command(WindowCommand::Kind kind, int index = 0) {
+  WindowCommand c{};
+  c.kind = kind;
+  c.index = index;
+  return c;
+}
+
 using Clock = std::chrono::steady_clock;
 
 std::string sdlError(const char* what) { return std::string(what) + ": " + SDL_GetError(); }
@@ -228,7 +237,7 @@ private:
   // KeySensors as X3D names it: a character, an action key code or a modifier.
   void forwardKey(const SDL_KeyboardEvent& e, bool press) {
     if (e.repeat || ImGui::GetIO().WantCaptureKeyboard || e.keysym.sym == SDLK_ESCAPE) return;
-    WindowCommand c{WindowCommand::Kind::Key, 0};
+    WindowCommand c = command(WindowCommand::Kind::Key);
     c.press = press;
     const SDL_Keycode s = e.keysym.sym;
     if (s >= SDLK_F1 && s <= SDLK_F12) c.index = int(s - SDLK_F1) + 1;
@@ -280,12 +289,12 @@ private:
         if (!drawer_->cutPlanes().empty()) activeCut_ = (activeCut_ + 1) % int(drawer_->cutPlanes().size());
         break;
       case SDLK_SPACE: spaceMilling_ = !spaceMilling_; break;
-      case SDLK_e: commands_.push_back({WindowCommand::Kind::ToggleEnabled, 0}); break;
-      case SDLK_m: commands_.push_back({WindowCommand::Kind::ToggleMillable, 0}); break;
-      case SDLK_b: commands_.push_back({WindowCommand::Kind::NextBurrShape, 0}); break;
+      case SDLK_e: commands_.push_back(command(WindowCommand::Kind::ToggleEnabled)); break;
+      case SDLK_m: commands_.push_back(command(WindowCommand::Kind::ToggleMillable)); break;
+      case SDLK_b: commands_.push_back(command(WindowCommand::Kind::NextBurrShape)); break;
       default:
         if (k.sym >= SDLK_1 && k.sym <= SDLK_9 && int(k.sym - SDLK_1) < int(options_.renderers.size()))
-          commands_.push_back({WindowCommand::Kind::SelectRenderer, int(k.sym - SDLK_1)});
+          commands_.push_back(command(WindowCommand::Kind::SelectRenderer, int(k.sym - SDLK_1)));
         if (k.sym >= SDLK_F1 && k.sym <= SDLK_F6) {
           const std::size_t i = std::size_t(k.sym - SDLK_F1);
           if (i < drawer_->cutPlanes().size()) drawer_->cutPlanes()[i].enabled = !drawer_->cutPlanes()[i].enabled;
