@@ -43,12 +43,9 @@ Rotation slerp(const Rotation& a, const Rotation& b, float t) {
 
 bool OrientationInterpolator::processEvents() {
   if (!takeEvent(set_fraction, seen_)) return false;
-  const auto& k = key.get();
-  const auto& v = keyValue.get();
-  const std::size_t n = std::min(k.size(), v.size());
-  if (n == 0) return false;
-  const KeySegment s = keySegment(k, n, set_fraction.get());
-  value_changed.set(s.t == 0.f ? v[s.i] : slerp(v[s.i], v[s.i + 1], s.t));
+  const auto v = interpolate(key.get(), keyValue.get(), set_fraction.get(), slerp);
+  if (!v) return false;
+  value_changed.set(*v);
   return true;
 }
 

@@ -1,7 +1,5 @@
 #include "millsim/std/PositionInterpolator.h"
 
-#include <algorithm>
-
 #include "millsim/std/KeyFrames.h"
 
 namespace millsim {
@@ -15,12 +13,10 @@ const NodeType& PositionInterpolator::type() {
 
 bool PositionInterpolator::processEvents() {
   if (!takeEvent(set_fraction, seen_)) return false;
-  const auto& k = key.get();
-  const auto& v = keyValue.get();
-  const std::size_t n = std::min(k.size(), v.size());
-  if (n == 0) return false;
-  const KeySegment s = keySegment(k, n, set_fraction.get());
-  value_changed.set(s.t == 0.f ? v[s.i] : v[s.i] + s.t * (v[s.i + 1] - v[s.i]));
+  const auto v = interpolate(key.get(), keyValue.get(), set_fraction.get(),
+                             [](const auto& a, const auto& b, float t) { return a + t * (b - a); });
+  if (!v) return false;
+  value_changed.set(*v);
   return true;
 }
 
