@@ -213,6 +213,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     EventClock events(*r.scene);
     events.tick(0.0);
     DrawnFields drawn(*r.scene);
+    ShapeMeshCache shapeMeshes;  // an animated scene's views share the meshes of unchanged geometry
 
     // Graphics first: its context and meshes are ready (or it failed)
     // before the first haptic frame, and the scene is not touched by this
@@ -271,7 +272,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       if (std::string s = live.poll(); !s.empty()) status = s;
       // What graphics draws follows the events, routes and keys: a new view when a drawn field changed.
       if (graphics && drawn.changed()) {
-        graphics->publishView(readSceneView(*r.scene));
+        graphics->publishView(readSceneView(*r.scene, nullptr, &shapeMeshes));
         drawn.mark();
       }
       if (!pool) {

@@ -32,7 +32,7 @@ GlMesh::~GlMesh() { release(); }
 
 GlMesh::GlMesh(GlMesh&& o) noexcept
     : vao_(std::exchange(o.vao_, 0)), vbo_(std::exchange(o.vbo_, 0)), ebo_(std::exchange(o.ebo_, 0)),
-      count_(std::exchange(o.count_, 0)) {}
+      uvbo_(std::exchange(o.uvbo_, 0)), count_(std::exchange(o.count_, 0)) {}
 
 GlMesh& GlMesh::operator=(GlMesh&& o) noexcept {
   if (this != &o) {
@@ -40,6 +40,7 @@ GlMesh& GlMesh::operator=(GlMesh&& o) noexcept {
     vao_ = std::exchange(o.vao_, 0);
     vbo_ = std::exchange(o.vbo_, 0);
     ebo_ = std::exchange(o.ebo_, 0);
+    uvbo_ = std::exchange(o.uvbo_, 0);
     count_ = std::exchange(o.count_, 0);
   }
   return *this;
@@ -49,7 +50,8 @@ void GlMesh::release() {
   if (vao_) glDeleteVertexArrays(1, &vao_);
   if (vbo_) glDeleteBuffers(1, &vbo_);
   if (ebo_) glDeleteBuffers(1, &ebo_);
-  vao_ = vbo_ = ebo_ = 0;
+  if (uvbo_) glDeleteBuffers(1, &uvbo_);
+  vao_ = vbo_ = ebo_ = uvbo_ = 0;
 }
 
 void GlMesh::upload(const std::vector<Vertex>& vertices, const std::vector<std::uint32_t>& indices) {
@@ -60,6 +62,16 @@ void GlMesh::upload(const std::vector<Vertex>& vertices, const std::vector<std::
                GL_DYNAMIC_DRAW);
   glBindVertexArray(0);
   count_ = int(indices.size());
+}
+
+void GlMesh::uploadTexCoords(const std::vector<glm::vec2>& texCoords) {
+  glBindVertexArray(vao_);
+  if (!uvbo_) glGenBuffers(1, &uvbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, uvbo_);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(texCoords.size() * sizeof(glm::vec2)), texCoords.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, GLsizei(sizeof(glm::vec2)), nullptr);
+  glBindVertexArray(0);
 }
 
 void GlMesh::draw() const {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace millsim {
@@ -28,12 +29,15 @@ public:
 
   // Replaces the buffers' contents (re-allocating them: chunk sizes change with every remesh).
   void upload(const std::vector<Vertex>& vertices, const std::vector<std::uint32_t>& indices);
+  // Texture coordinates (attribute 3), one per vertex, in a buffer of their
+  // own so that the volume meshes, which have none, carry no space for them.
+  void uploadTexCoords(const std::vector<glm::vec2>& texCoords);
   void draw() const;
   std::size_t triangles() const { return count_ / 3; }
 
 private:
   void release();
-  unsigned vao_ = 0, vbo_ = 0, ebo_ = 0;
+  unsigned vao_ = 0, vbo_ = 0, ebo_ = 0, uvbo_ = 0;
   int count_ = 0;
 };
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <stdexcept>
 
 #define GL_GLEXT_PROTOTYPES 1
@@ -10,8 +11,13 @@
 #include <GL/glext.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "millsim/graphics/FontAtlas.h"
 #include "millsim/graphics/GlMesh.h"
+#include "millsim/graphics/GraphicsError.h"
+#include "millsim/graphics/ImageFile.h"
 #include "millsim/graphics/ShadedProgram.h"
+#include "millsim/graphics/TextMesh.h"
+#include "millsim/graphics/TriangleMesh.h"
 #include "millsim/graphics/VolumeMesh.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -59,7 +65,10 @@ SceneDrawer::SceneDrawer(SceneView scene) : scene_(std::move(scene)), view_(scen
   }
 }
 
-SceneDrawer::~SceneDrawer() = default;
+SceneDrawer::~SceneDrawer() {
+  for (auto& [file, t] : textures_)
+    if (t.id) glDeleteTextures(1, &t.id);
+}
 
 std::size_t SceneDrawer::addVolume(const VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso) {
   scene_.volumes.push_back({&voxels, localToWorld, iso, {}, {}});
@@ -136,19 +145,15 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
   const glm::dmat3 cameraAxes = glm::mat3_cast(view_.orientation);
   const glm::vec3 head(glm::normalize(cameraAxes * glm::dvec3(0.0, 0.0, 1.0)));
   const glm::vec3 fill(glm::normalize(cameraAxes * glm::dvec3(-0.6, 0.8, 0.4)));
-  program_->use(camera_, head, fill);
+  program_->use(camera_, head, fill, scene_.headlight, scene_.lights);
 
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
     program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
     meshes_[i]->draw();
   }
-  auto drawShape = [&](const DrawShape& s) {
-    program_->setObject(s.model, s.material, &s.material.diffuse, false, planesFor(s.cuts, false));
-    (s.kind == DrawShape::Kind::Sphere ? *sphere_ : s.kind == DrawShape::Kind::Cylinder ? *cylinder_ : *box_).draw();
-  };
   std::vector<const DrawShape*> seeThrough;
   for (const DrawShape& s : scene_.shapes)
-    if (s.material.transparency > 0.f) seeThrough.push_back(&s);
+    if (s.material.transparency > 0.f || s.kind == DrawShape::Kind::Text) seeThrough.push_back(&s);  // glyph edges blend
     else drawShape(s);
   for (const ToolView& t : tools) drawTool(t);
   // See-through shapes last, farthest first, blended over what is behind them
@@ -173,6 +178,122 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
   }
   for (int i = 0; i < kMaxClipPlanes; ++i) glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
   glBindVertexArray(0);
+  dropUnused();
+}
+
+void SceneDrawer::drawShape(const DrawShape& s) {
+  const ClipPlanes planes = planesFor(s.cuts, false);
+  switch (s.kind) {
+    case DrawShape::Kind::Sphere:
+    case DrawShape::Kind::Cylinder:
+    case DrawShape::Kind::Box:
+      program_->setObject(s.model, s.material, &s.material.diffuse, false, planes);
+      (s.kind == DrawShape::Kind::Sphere ? *sphere_ : s.kind == DrawShape::Kind::Cylinder ? *cylinder_ : *box_).draw();
+      return;
+    case DrawShape::Kind::Mesh: {
+      GlMesh& gl = meshFor(s.mesh);
+      program_->setObject(s.model, s.material, s.mesh->colours.empty() ? &s.material.diffuse : nullptr, false, planes);
+      bool grey = false;
+      if (!s.texture.file.empty() && bindTexture(s.texture, grey))
+        program_->setTexture(grey ? ShadedProgram::TextureMode::Modulate : ShadedProgram::TextureMode::Replace);
+      gl.draw();
+      return;
+    }
+    case DrawShape::Kind::Text: {
+      FontAtlas* font = nullptr;
+      GlMesh* gl = textFor(*s.text, font);
+      if (!gl) return;
+      program_->setObject(s.model, s.material, &s.material.diffuse, false, planes);
+      font->bind();
+      program_->setTexture(ShadedProgram::TextureMode::Coverage);
+      gl->draw();
+      return;
+    }
+  }
+}
+
+GlMesh& SceneDrawer::meshFor(const std::shared_ptr<const TriangleMesh>& mesh) {
+  CachedMesh& c = shapeMeshes_[mesh.get()];
+  if (!c.gl) {
+    c.source = mesh;
+    const bool colours = mesh->colours.size() == mesh->positions.size();
+    c.gl = std::make_unique<GlMesh>(colours);
+    std::vector<Vertex> v(mesh->positions.size());
+    std::vector<std::uint32_t> idx(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      v[i] = {mesh->positions[i], mesh->normals[i], colours ? mesh->colours[i] : glm::vec3(1.f)};
+      idx[i] = std::uint32_t(i);
+    }
+    c.gl->upload(v, idx);
+    if (mesh->texCoords.size() == v.size()) c.gl->uploadTexCoords(mesh->texCoords);
+  }
+  return *c.gl;
+}
+
+GlMesh* SceneDrawer::textFor(const DrawText& text, FontAtlas*& font) {
+  for (CachedText& c : texts_)
+    if (c.text == text) return font = c.font, c.gl.get();
+  // The first family fontconfig resolves (it always finds one: its substitutes).
+  const std::string family = text.family.empty() ? "SERIF" : text.family.front();
+  auto& atlas = fonts_[{family, text.style}];
+  if (!atlas) {
+    try {
+      atlas = std::make_unique<FontAtlas>(family, text.style);
+    } catch (const GraphicsError& e) {
+      std::cerr << "millsim: warning: Text is not drawn: " << e.what() << "\n";
+      return nullptr;
+    }
+  }
+  const TriangleMesh mesh = layoutText(text, *atlas);
+  CachedText c{text, atlas.get(), std::make_unique<GlMesh>(false)};
+  std::vector<Vertex> v(mesh.positions.size());
+  std::vector<std::uint32_t> idx(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = {mesh.positions[i], mesh.normals[i], glm::vec3(1.f)}, idx[i] = std::uint32_t(i);
+  c.gl->upload(v, idx);
+  c.gl->uploadTexCoords(mesh.texCoords);
+  texts_.push_back(std::move(c));
+  return font = texts_.back().font, texts_.back().gl.get();
+}
+
+bool SceneDrawer::bindTexture(const DrawTexture& texture, bool& grey) {
+  auto [it, fresh] = textures_.try_emplace(texture.file);
+  CachedTexture& t = it->second;
+  if (fresh) {
+    try {
+      const TextureImage img = readTextureImage(texture.file);
+      glGenTextures(1, &t.id);
+      glBindTexture(GL_TEXTURE_2D, t.id);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, img.width, img.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+      glGenerateMipmap(GL_TEXTURE_2D);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      t.grey = img.grey;
+    } catch (const GraphicsError& e) {
+      std::cerr << "millsim: warning: ImageTexture is not drawn: " << e.what() << "\n";
+    }
+  }
+  if (!t.id) return false;
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, t.id);
+  // Per draw: two shapes may share an image with different wrapping.
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, texture.repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, texture.repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  grey = t.grey;
+  return true;
+}
+
+void SceneDrawer::dropUnused() {
+  if (shapeMeshes_.size() + texts_.size() <= scene_.shapes.size()) return;
+  for (auto it = shapeMeshes_.begin(); it != shapeMeshes_.end();) {
+    const bool used = std::any_of(scene_.shapes.begin(), scene_.shapes.end(),
+                                  [&](const DrawShape& s) { return s.mesh.get() == it->first; });
+    it = used ? std::next(it) : shapeMeshes_.erase(it);
+  }
+  std::erase_if(texts_, [&](const CachedText& c) {
+    return std::none_of(scene_.shapes.begin(), scene_.shapes.end(),
+                        [&](const DrawShape& s) { return s.text && *s.text == c.text; });
+  });
 }
 
 Image SceneDrawer::readPixels(int width, int height) {

@@ -12,8 +12,11 @@
 //
 // Threads: create, call and destroy it on the thread whose context is current.
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -26,6 +29,7 @@
 
 namespace millsim {
 
+class FontAtlas;
 class GlMesh;
 class ShadedProgram;
 class VolumeMesh;
@@ -101,6 +105,14 @@ public:
 private:
   VolumeMesh& mesh(std::size_t index);
   void drawTool(const ToolView& t);
+  void drawShape(const DrawShape& s);
+  // The GPU copy of a mesh shape or a Text's glyph quads, made on first use.
+  GlMesh& meshFor(const std::shared_ptr<const TriangleMesh>& mesh);
+  GlMesh* textFor(const DrawText& text, FontAtlas*& font);
+  // The texture of an image file bound to unit 0; false if it could not be read (said once on stderr).
+  bool bindTexture(const DrawTexture& texture, bool& grey);
+  // Forgets GPU meshes of shapes and texts no longer in the scene.
+  void dropUnused();
   ClipPlanes planesFor(const std::vector<int>& cutIndices, bool volume) const;
 
   SceneView scene_;
@@ -113,6 +125,23 @@ private:
   std::unique_ptr<GlMesh> head_;
   glm::vec2 headRadii_{-1.f};
   std::vector<std::unique_ptr<VolumeMesh>> meshes_;
+  struct CachedMesh {
+    std::shared_ptr<const TriangleMesh> source;  // keeps the key alive
+    std::unique_ptr<GlMesh> gl;
+  };
+  std::unordered_map<const TriangleMesh*, CachedMesh> shapeMeshes_;
+  struct CachedText {
+    DrawText text;
+    FontAtlas* font = nullptr;
+    std::unique_ptr<GlMesh> gl;
+  };
+  std::vector<CachedText> texts_;
+  std::map<std::pair<std::string, std::string>, std::unique_ptr<FontAtlas>> fonts_;  // (family, style)
+  struct CachedTexture {
+    unsigned id = 0;  // 0: the file could not be read
+    bool grey = false;
+  };
+  std::map<std::string, CachedTexture> textures_;
 };
 
 }  // namespace millsim

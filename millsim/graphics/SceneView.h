@@ -1,11 +1,16 @@
 #pragma once
 // SceneView: what graphics draws from a Scene, read once on the scene thread
-// and free of OpenGL — the bound Viewpoint, the Background colour, every
-// Shape (Sphere, Cylinder, Box with its Material) and every VolumeObject with
-// its accumulated transform and the ClipPlanes that apply to it. Also the
+// and free of OpenGL — the bound Viewpoint, the Background colour, the lights,
+// every Shape (Sphere, Cylinder, Box, Cone, IndexedFaceSet,
+// IndexedTriangleSet, Text, with its Material and ImageTexture) and every
+// VolumeObject with its accumulated transform and the ClipPlanes that apply
+// to it. Also the
 // camera maths (view, projection, projecting a world point to a pixel), which
 // the scene tests use to know where things must appear.
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -20,6 +25,7 @@ class TissueMap;
 class Node;
 class Scene;
 class VoxelVolume;
+struct TriangleMesh;
 
 // An X3D viewpoint in the world frame: the camera looks along its local −Z, +Y up.
 struct ViewSpec {
@@ -61,15 +67,51 @@ struct CutPlane {
   bool user = false;     // the user's plane cuts every volume (not the Shapes)
 };
 
+// A Text's lines and how to set them (FontStyle's fields, defaults when it has none).
+struct DrawText {
+  std::vector<std::string> lines;
+  std::vector<float> lengths;  // Text.length: a line's width when > 0 (local units)
+  float maxExtent = 0.f;
+  std::vector<std::string> family{"SERIF"};
+  std::string style = "PLAIN";
+  float size = 1.f, spacing = 1.f;
+  std::string justifyMajor = "BEGIN", justifyMinor = "FIRST";
+  bool topToBottom = true;
+  bool operator==(const DrawText&) const = default;
+};
+
+// An ImageTexture: the file found at load (empty: none) and its wrapping.
+struct DrawTexture {
+  std::string file;
+  bool repeatS = true, repeatT = true;
+};
+
 struct DrawShape {
-  enum class Kind { Sphere, Cylinder, Box } kind;
-  glm::dmat4 model;  // unit primitive (radius 1 / height 1 / edge 1, centred) to world
+  enum class Kind { Sphere, Cylinder, Box, Mesh, Text } kind = Kind::Sphere;
+  // Sphere, Cylinder, Box: unit primitive (radius 1 / height 1 / edge 1,
+  // centred) to world; Mesh (the mesh's own units), Text: local to world.
+  glm::dmat4 model{1.0};
   DrawMaterial material;
   ClipPlanes clipPlanes;  // as authored (world)
   std::vector<int> cuts;  // the same planes as indices into SceneView::cutPlanes
   // An assessment region's shape: drawn see-through over everything, even
   // where the tooth hides it (a target inside the crown shows where to cut).
   bool overlay = false;
+  std::shared_ptr<const TriangleMesh> mesh;  // Kind::Mesh (also a textured primitive)
+  std::shared_ptr<const DrawText> text;      // Kind::Text
+  DrawTexture texture;
+};
+
+// A light in the world frame (X3D's DirectionalLight, PointLight, SpotLight).
+struct DrawLight {
+  enum class Kind { Directional, Point, Spot } kind = Kind::Directional;
+  glm::vec3 colour{1.f};          // color × intensity
+  glm::vec3 ambient{0.f};         // color × ambientIntensity
+  glm::dvec3 position{0.0};       // Point, Spot
+  glm::dvec3 direction{0.0, 0.0, -1.0};  // where the light travels (unit), Directional, Spot
+  glm::vec3 attenuation{1.f, 0.f, 0.f};
+  double radius = 100.0;          // world units
+  float beamWidth = 0.785398f, cutOffAngle = 1.570796f;
 };
 
 struct DrawVolume {
@@ -98,6 +140,8 @@ struct SceneView {
   std::vector<NamedView> viewpoints;    // every Viewpoint, in file order
   std::string navigation = "EXAMINE";   // the first NavigationInfo's first type
   glm::vec3 background{0.f};            // the first Background's first skyColor
+  bool headlight = true;                // the first NavigationInfo's headlight
+  std::vector<DrawLight> lights;        // every light that is on, in file order
   std::vector<DrawShape> shapes;
   std::vector<DrawVolume> volumes;      // loaded VolumeObjects, in placedVolumes() order (as VoxelScene)
   std::vector<CutPlane> cutPlanes;
@@ -110,8 +154,25 @@ struct SceneView {
   int addUserCut(const glm::dvec3& towards);
 };
 
-// `viewpoint`: the Viewpoint to look through; null takes the first in the file.
-SceneView readSceneView(const Scene& scene, const Node* viewpoint = nullptr);
+// Meshes built from mesh geometry, kept between reads of the same scene so
+// that an animation re-reading the view 50 times a second does not
+// re-triangulate an unchanged jaw. Rebuilt when a field of the geometry or
+// of its vertex data nodes has a newer event. Belongs to one Scene.
+class ShapeMeshCache {
+public:
+  std::shared_ptr<const TriangleMesh> meshOf(const Node& geometry);
+
+private:
+  struct Entry {
+    std::uint64_t version = 0;
+    std::shared_ptr<const TriangleMesh> mesh;
+  };
+  std::unordered_map<const Node*, Entry> entries_;
+};
+
+// `viewpoint`: the Viewpoint to look through; null takes the first in the
+// file. `meshes`: a cache for repeated reads (null: meshes are built anew).
+SceneView readSceneView(const Scene& scene, const Node* viewpoint = nullptr, ShapeMeshCache* meshes = nullptr);
 
 // A view along `orientation` (looking down its −Z) from far enough that the
 // sphere around [lo, hi] fills the smaller image side with a small margin.
@@ -120,5 +181,7 @@ ViewSpec frameBounds(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dqua
 
 // Clip planes beyond this many per object are ignored (GL guarantees 8 clip distances).
 inline constexpr int kMaxClipPlanes = 6;
+// Lights beyond this many are ignored (the shader's arrays).
+inline constexpr int kMaxLights = 8;
 
 }  // namespace millsim

@@ -59,6 +59,17 @@ ReplaySummary finishReplay(HapticLoop& loop, FrameLogWriter& writer, CompiledRun
   return summary;
 }
 
+// Each volume's removedVolume field follows the milling while the scene's
+// events run (as the scene thread of a live run sets it), so that a route
+// from it — to a Text through a NumberToText — shows the replay's progress.
+void publishRemoved(CompiledRun& run) {
+  for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
+    auto& v = run.scene->volume(i);
+    const float removed = float(v.miller.totalRemoved());
+    if (v.node && removed != v.node->removedVolume.get()) v.node->removedVolume.set(removed);
+  }
+}
+
 // The recorded run's device is not opened: the loop writes its output here.
 class RecordedOutput final : public DeviceDriver {
 public:
@@ -88,7 +99,10 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
   for (long n = 0; n < frames; ++n) {
     loop.stepSimulated();
     writer.drain(loop);
-    if (!events.empty()) events.advanceTo(double(n) / run.settings.rate);
+    if (!events.empty()) {
+      publishRemoved(run);
+      events.advanceTo(double(n) / run.settings.rate);
+    }
   }
   return finishReplay(loop, writer, run, rendererName, options);
 }
@@ -147,7 +161,10 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
     }
     loop.stepRecorded(f.t, f.periodUs, f.device, f.button);
     writer.drain(loop);
-    if (!events.empty()) events.advanceTo(f.t - frames.front().t);
+    if (!events.empty()) {
+      publishRemoved(run);
+      events.advanceTo(f.t - frames.front().t);
+    }
   }
   if (pool) pool->collect(loop);
   return finishReplay(loop, writer, run, rendererName, options);

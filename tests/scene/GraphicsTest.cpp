@@ -428,3 +428,121 @@ TEST(SceneRenderer, DrawingFollowsAnAnimatedTransformAndASwitch) {
   renderer->render(std::nullopt);
   EXPECT_EQ(red(renderer->readPixels()).second, 0) << "the Switch chooses nothing";
 }
+
+// Issue 17's drawn standard nodes: mesh geometry, Cone, Text, lights and
+// ImageTexture appear where the scene puts them.
+namespace {
+
+Image drawScene(ScratchDir& dir, const std::string& body, int side = 96) {
+  LoadResult r = loadSceneFile(dir.write("s.x3d", x3d(body)), builtinRegistry());
+  EXPECT_TRUE(r.ok()) << r.report();
+  if (!r.ok()) return {};
+  auto renderer = createSceneRenderer(*r.scene, sized(side));
+  renderer->render(std::nullopt);
+  return renderer->readPixels();
+}
+
+// Pixels in [x0, x1) × [y0, y1) that pass `match`.
+template <class Match> int countIn(const Image& img, int x0, int y0, int x1, int y1, Match match) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) n += match(img.at(x, y)) ? 1 : 0;
+  return n;
+}
+
+bool isRed(glm::u8vec4 p) { return p.r > 150 && p.g < 60 && p.b < 60; }
+bool isGreen(glm::u8vec4 p) { return p.g > 100 && p.r < 60 && p.b < 60; }
+bool isWhite(glm::u8vec4 p) { return p.r > 150 && p.g > 150 && p.b > 150; }
+
+const char* kCamera = R"(<Viewpoint position="0 0 3" fieldOfView="0.8"/><Background skyColor="0 0 0"/>)";
+
+}  // namespace
+
+TEST(SceneRenderer, DrawsFaceSetsConesAndText) {
+  ScratchDir dir;
+  const std::string shapes = std::string(kCamera) + R"(
+    <Transform translation="-0.6 0.4 0"><Shape><Appearance><Material emissiveColor="1 0 0" diffuseColor="0 0 0"/></Appearance>
+      <IndexedFaceSet coordIndex="0 1 2 3 -1"><Coordinate point="-0.2 -0.2 0, 0.2 -0.2 0, 0.2 0.2 0, -0.2 0.2 0"/></IndexedFaceSet>
+    </Shape></Transform>
+    <Transform translation="0.6 0.4 0"><Shape><Appearance><Material emissiveColor="0 0.8 0" diffuseColor="0 0 0"/></Appearance>
+      <Cone bottomRadius="0.2" height="0.4"/></Shape></Transform>)";
+  const std::string label = R"(
+    <Transform translation="0 -0.5 0"><Shape><Appearance><Material emissiveColor="1 1 1" diffuseColor="0 0 0"/></Appearance>
+      <Text string='"MillSim"'><FontStyle family='"SANS"' size="0.3" justify='"MIDDLE" "MIDDLE"'/></Text></Shape></Transform>)";
+  const Image img = drawScene(dir, shapes + label);
+  ASSERT_EQ(img.width, 96);
+  // The face set fills the upper left, the cone the upper right, the text the bottom middle.
+  EXPECT_GT(countIn(img, 0, 0, 48, 48, isRed), 150) << "IndexedFaceSet";
+  EXPECT_EQ(countIn(img, 48, 0, 96, 96, isRed), 0);
+  const int cone = countIn(img, 48, 0, 96, 48, isGreen);
+  EXPECT_GT(cone, 60) << "Cone";
+  // A cone is narrower at its apex: fewer green pixels in its top row half than its bottom.
+  EXPECT_LT(countIn(img, 48, 0, 96, 22, isGreen), countIn(img, 48, 22, 96, 48, isGreen));
+  const int text = countIn(img, 0, 60, 96, 96, isWhite);
+  EXPECT_GT(text, 40) << "Text draws glyphs";
+  EXPECT_LT(text, 1000) << "glyphs, not a filled box";
+  const Image none = drawScene(dir, shapes);
+  EXPECT_EQ(countIn(none, 0, 60, 96, 96, isWhite), 0);
+  // Two strings draw differently, centred either way (justify MIDDLE): mean x near the middle.
+  double sum = 0;
+  int n = 0;
+  for (int y = 60; y < 96; ++y)
+    for (int x = 0; x < 96; ++x)
+      if (isWhite(img.at(x, y))) sum += x + 0.5, ++n;
+  EXPECT_NEAR(sum / n, 48.0, 6.0) << "justify MIDDLE centres the line";
+}
+
+TEST(SceneRenderer, SceneLightsReplaceTheHeadlight) {
+  ScratchDir dir;
+  const std::string box = std::string(kCamera) + R"(<NavigationInfo headlight="false"/>
+    <Shape><Appearance><Material diffuseColor="1 1 1" ambientIntensity="0"/></Appearance><Box size="1 1 1"/></Shape>)";
+  auto centre = [&](const std::string& extra) { return drawScene(dir, box + extra, 32).at(16, 16); };
+  EXPECT_LT(centre("").r, 10) << "headlight FALSE and no light: dark";
+  const auto lit = centre(R"(<DirectionalLight direction="0 0 -1" color="1 0.5 0"/>)");
+  EXPECT_GT(lit.r, 200) << "a DirectionalLight shining at the face";
+  EXPECT_NEAR(lit.g, lit.r / 2, 20) << "in its colour";
+  EXPECT_LT(centre(R"(<DirectionalLight direction="0 0 1"/>)").r, 10) << "shining from behind";
+  EXPECT_LT(centre(R"(<DirectionalLight direction="0 0 -1" on="false"/>)").r, 10) << "off";
+  EXPECT_GT(centre(R"(<PointLight location="0 0 2"/>)").r, 150) << "a PointLight in front";
+  EXPECT_LT(centre(R"(<PointLight location="0 0 2" radius="1"/>)").r, 10) << "beyond its radius";
+  EXPECT_GT(centre(R"(<SpotLight location="0 0 2" direction="0 0 -1" cutOffAngle="0.3"/>)").r, 150) << "a spot at the face";
+  EXPECT_LT(centre(R"(<SpotLight location="0 0 2" direction="1 0 0" cutOffAngle="0.3"/>)").r, 10) << "a spot turned away";
+}
+
+TEST(SceneRenderer, ImageTextureWrapsTheImageOnAShape) {
+  ScratchDir dir;
+  // 2 × 2: red, green on the top row; blue, white below (PNG rows run from the top).
+  Image checker{2, 2, {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255}};
+  writePng(checker, dir.path() / "checker.png");
+  const Image img = drawScene(dir, std::string(kCamera) + R"(
+    <Shape><Appearance><Material emissiveColor="0 0 0"/><ImageTexture url='"checker.png"' repeatS="false" repeatT="false"/></Appearance>
+      <Box size="1.6 1.6 0.01"/></Shape>)");
+  ASSERT_EQ(img.width, 96);
+  // The face spans about the middle two thirds; its quadrants show the image's pixels, upright.
+  const auto topLeft = img.at(30, 30), topRight = img.at(66, 30), bottomLeft = img.at(30, 66), bottomRight = img.at(66, 66);
+  EXPECT_TRUE(topLeft.r > 120 && topLeft.g < 60 && topLeft.b < 60) << int(topLeft.r) << " " << int(topLeft.g) << " " << int(topLeft.b);
+  EXPECT_TRUE(topRight.g > 120 && topRight.r < 60 && topRight.b < 60);
+  EXPECT_TRUE(bottomLeft.b > 120 && bottomLeft.r < 60 && bottomLeft.g < 60);
+  EXPECT_TRUE(bottomRight.r > 120 && bottomRight.g > 120 && bottomRight.b > 120);
+  // JPEG too (a grey one modulates the material's colour).
+  const Image jpeg = drawScene(dir, std::string(kCamera) + R"(
+    <Shape><Appearance><Material diffuseColor="1 0 0"/><ImageTexture url='"/nonexistent.jpg" ")" MILLSIM_SOURCE_DIR
+                                                    R"(/tests/data/textures/grey-ramp.jpg"'/></Appearance>
+      <Box size="1.6 1.6 0.01"/></Shape>)");
+  const auto left = jpeg.at(26, 48), right = jpeg.at(70, 48);
+  EXPECT_LT(left.r + 40, right.r) << "the ramp runs dark to light, left to right";
+  EXPECT_LT(right.g, 40) << "grey modulates the red material";
+}
+
+TEST(ImageTexture, AMissingOrWrongFileIsAWarningAtTheNode) {
+  ScratchDir dir;
+  dir.write("not-an-image.png", "hello");
+  LoadResult r = loadSceneFile(dir.write("s.x3d", x3d(R"(
+<Shape><Appearance><ImageTexture url='"missing.png" "not-an-image.png" "https://example.org/a.png"'/></Appearance><Box/></Shape>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const std::string report = r.report();
+  EXPECT_NE(report.find("s.x3d:5:20: warning: ImageTexture has no usable image"), std::string::npos) << report;
+  EXPECT_NE(report.find("'not-an-image.png': is neither a PNG nor a JPEG file"), std::string::npos) << report;
+  EXPECT_NE(report.find("not fetched (MillSim reads local files only)"), std::string::npos) << report;
+}

@@ -1,0 +1,10 @@
+#include "millsim/std/Text.h"
+
+namespace millsim {
+
+const NodeType& Text::type() {
+  static const NodeType t = makeNodeType<Text>("Text", "geometry", "Text", "Lines of text (labels, instructions, live values).");
+  return t;
+}
+
+}  // namespace millsim
