@@ -29,6 +29,7 @@
 #include "RunSound.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/devices/AnyDevice.h"
 #include "millsim/devices/MouseDevice.h"
 #include "millsim/run/FrameLog.h"
 #include "millsim/run/LiveUpdates.h"
@@ -155,7 +156,10 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       std::optional<Trajectory> trajectory;
       if (!args->trajectory.empty()) trajectory = Trajectory::load(args->trajectory);
       DriverOptions driverOptions{trajectory ? &*trajectory : nullptr, nullptr};
-      if (auto* mouse = dynamic_cast<MouseDevice*>(run.device); mouse && graphicsOptions.window) {
+      // A MouseDevice follows the window's mouse; an AnyDevice does when it finds no ARES.
+      auto* any = dynamic_cast<AnyDevice*>(run.device);
+      const MouseDevice* mouse = any ? &any->mouse() : dynamic_cast<MouseDevice*>(run.device);
+      if (mouse && graphicsOptions.window) {
         pointer = std::make_unique<PointerInput>(mouse->startPose());
         driverOptions.pointer = pointer.get();
         graphicsOptions.pointer = pointer.get();
@@ -163,6 +167,12 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         graphicsOptions.pointerDepthStep = mouse->depthStep.get();
       }
       auto driver = run.device->openDriver(driverOptions);
+      if (any) {
+        any->openedDevice.set(any->followsMouse() ? "MouseDevice" : "AresDevice");
+        std::cout << "AnyDevice: " << (any->followsMouse() ? "no ARES found; following the mouse" : "opened the ARES")
+                  << "\n";
+        if (!any->followsMouse()) graphicsOptions.pointer = nullptr;  // the ARES moves the tool, not the mouse
+      }
       duration = args->duration > 0.0 ? args->duration : driver->naturalDuration();
       if (graphicsOptions.window) {
         // Every renderer compiled now, on this thread: a key swaps to a ready one.

@@ -2,6 +2,7 @@
 // here (or, for integrators, in a plugin's entry point), never by static
 // initialisers.
 #include "millsim/core/NodeRegistry.h"
+#include "millsim/devices/AnyDevice.h"
 #include "millsim/devices/AresDevice.h"
 #include "millsim/devices/DeviceChecks.h"
 #include "millsim/devices/HandDevice.h"
@@ -22,7 +23,7 @@ void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &Tissue::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
-                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &MillingTarget::type(),
+                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &AnyDevice::type(), &MillingTarget::type(),
                             &ForbiddenRegion::type()})
     r.add(*t);
   r.addSceneCheck(&checkDevices);

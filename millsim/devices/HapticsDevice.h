@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "millsim/core/NodeKinds.h"
+#include "millsim/devices/PositionCalibration.h"
 #include "millsim/devices/Trajectory.h"
 #include "millsim/driver/DeviceDriver.h"
 #include "millsim/haptics/HapticsRenderer.h"
@@ -50,8 +51,10 @@ public:
                      Range::openClosed(0, 50).in(quantity::force)};
   SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m); live.",
                       Range::openClosed(0, 5).in(quantity::torque)};
-  SFVec3f positionCalibration{this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
-                              "Offset added to the raw device position (m).", Range::closed(-10, 10).in(quantity::length)};
+  PositionCalibration positionCalibration{
+      this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
+      "Offset added to the raw device position (m). H3DAPI's 4x4 matrix form is read when it only translates.",
+      Range::closed(-10, 10).in(quantity::length)};
   SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
                                     "Rotation applied to raw device poses (about the world origin)."};
   SFBool enabled{this, "enabled", Access::InputOutput, true, "When false, no force or torque is sent; live."};
