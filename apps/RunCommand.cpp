@@ -259,6 +259,12 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         publishToDevice(*run.device, writer.last(), run.settings.rate);
         regions->update(writer.last().t);
         regions->publishFields();
+        // Each VolumeObject's removedVolume follows the milling (a route may show it in a Text).
+        for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
+          auto& v = run.scene->volume(i);
+          const float removed = float(v.miller.totalRemoved());
+          if (v.node && removed != v.node->removedVolume.get()) v.node->removedVolume.set(removed);
+        }
       }
       sound->pump();
       for (const WindowCommand& c : controls.take()) {

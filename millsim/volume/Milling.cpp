@@ -122,7 +122,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
         }
       }
     }
-  totalRemoved_ += result.removedVolume;
+  totalRemoved_.add(result.removedVolume);
   return result;
 }
 

@@ -21,6 +21,7 @@
 // advances the burr; the stamp itself only leaves tissue of hardness 0 alone.
 #include <glm/vec3.hpp>
 
+#include <atomic>
 #include <memory>
 
 #include "millsim/haptics/BurrHead.h"
@@ -54,7 +55,10 @@ public:
   StampResult stamp(const glm::dvec3& centreLocal, const glm::dvec3& axisLocal, const BurrHead& head,
                     DirtyBlocks& dirty);
 
-  double totalRemoved() const { return totalRemoved_; }
+  // m³ removed so far. The scene thread of `millsim run` reads it while the
+  // haptic thread mills (VolumeObject.removedVolume, live): a relaxed atomic
+  // with one writer, so the read is race-free and the stamp never waits.
+  double totalRemoved() const { return totalRemoved_.load(std::memory_order_relaxed); }
 
 private:
   // The shared voxel walk: every voxel within `reach` (+ half a ramp) of the
@@ -66,7 +70,18 @@ private:
   const TissueMap* tissues_;
   std::unique_ptr<TissueMap::LabelGrid::ConstAccessor> labels_;  // only with tissues
   float iso_;
-  double totalRemoved_ = 0.0;
+  // Copyable (a Miller is moved into its VoxelScene) though atomic.
+  struct Total {
+    std::atomic<double> value{0.0};
+    Total() = default;
+    Total(const Total& o) : value(o.load(std::memory_order_relaxed)) {}
+    Total& operator=(const Total& o) {
+      value.store(o.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      return *this;
+    }
+    double load(std::memory_order order) const { return value.load(order); }
+    void add(double d) { value.store(value.load(std::memory_order_relaxed) + d, std::memory_order_relaxed); }
+  } totalRemoved_;
 };
 
 }  // namespace millsim
