@@ -211,6 +211,26 @@ std::vector<IsoSurfaceMesher::ChunkKey> IsoSurfaceMesher::update(const std::vect
   return changed;
 }
 
+namespace {
+
+// The density's difference along one axis, averaged 1-2-1 over the two other
+// axes (Sobel's operator). The neighbours are the central difference's
+// (clamped at the volume's faces), so the padding and the dirty reach stay
+// one sample.
+template <class Step> float smoothedDifference(const float* v, const Step& along, const Step& p, const Step& q) {
+  const std::ptrdiff_t po[3] = {p.minus, 0, p.plus}, qo[3] = {q.minus, 0, q.plus};
+  constexpr float w[3] = {1.f, 2.f, 1.f};
+  float sum = 0.f;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const float* c = v + po[a] + qo[b];
+      sum += w[a] * w[b] * (c[along.plus] - c[along.minus]);
+    }
+  return sum * along.scale * (1.f / 16.f);
+}
+
+}  // namespace
+
 void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* changed) {
   Extractor& ex = *extractor_;
   const glm::ivec3 dims = volume_->dims();
@@ -268,9 +288,9 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
       const float* src = row(lo.y + j, lo.z + k);
       for (int i = 0; i < n.x; ++i, g += 3) {
         const float* v = src + i;
-        g[0] = (v[sx[i].plus] - v[sx[i].minus]) * sx[i].scale;
-        g[1] = (v[sy[j].plus] - v[sy[j].minus]) * sy[j].scale;
-        g[2] = (v[sz[k].plus] - v[sz[k].minus]) * sz[k].scale;
+        g[0] = smoothedDifference(v, sx[i], sy[j], sz[k]);
+        g[1] = smoothedDifference(v, sy[j], sx[i], sz[k]);
+        g[2] = smoothedDifference(v, sz[k], sx[i], sy[j]);
       }
     }
 

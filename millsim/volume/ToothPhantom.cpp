@@ -88,10 +88,14 @@ float densityAt(const glm::dvec3& pmm, bool socket, double hmm) {
     v += (D::bone - v) * coverage(bone, hmm);
     v += (D::softTissue - v) * coverage(std::max(tooth - 0.2, bone), hmm);
   }
-  v += (D::enamel - v) * coverage(tooth, hmm);
-  v += (D::dentin - v) * coverage(tooth + enamelThickness(pmm.y), hmm);
-  v += (D::softTissue - v) * coverage(pulpDistance(pmm), hmm);
-  return static_cast<float>(v);
+  const double enamel = enamelThickness(pmm.y);
+  auto material = [&](double dentinDepth) {
+    double m = D::enamel;
+    m += (D::dentin - m) * coverage(tooth + enamel - dentinDepth, hmm);
+    return m + (D::softTissue - m) * coverage(pulpDistance(pmm), hmm);
+  };
+  const double c = coverage(tooth, hmm);
+  return static_cast<float>(v + ((c < 1.0 ? material(hmm) : material(0.0)) - v) * c);
 }
 
 // The tissue a voxel of size h (mm) at p is mostly made of, by the same
