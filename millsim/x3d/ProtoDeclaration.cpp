@@ -32,7 +32,7 @@ std::vector<std::string> ProtoScope::names() const {
 }
 
 std::optional<FieldType> fieldTypeFromName(std::string_view name) {
-  for (int i = 0; i <= static_cast<int>(FieldType::MFVec4f); ++i)
+  for (int i = 0; i <= static_cast<int>(FieldType::SFMatrix4f); ++i)
     if (fieldTypeName(static_cast<FieldType>(i)) == name) return static_cast<FieldType>(i);
   return std::nullopt;
 }
@@ -105,6 +105,9 @@ std::optional<std::string> invalidValue(FieldType type, std::string_view text) {
       case FieldType::SFColor:
       case FieldType::MFColor:
         parseAs<Color>(type, text);
+        break;
+      case FieldType::SFMatrix4f:
+        (void)parseSingle<glm::mat4>(text);
         break;
       case FieldType::SFNode:
       case FieldType::MFNode:
