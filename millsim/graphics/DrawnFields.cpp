@@ -6,6 +6,7 @@
 #include "millsim/std/Background.h"
 #include "millsim/std/ClipPlane.h"
 #include "millsim/std/Material.h"
+#include "millsim/std/MatrixTransform.h"
 #include "millsim/std/Switch.h"
 #include "millsim/std/Transform.h"
 
@@ -14,7 +15,8 @@ namespace millsim {
 DrawnFields::DrawnFields(const Scene& scene) {
   scene.forEachNode([&](Node& n) {
     if (dynamic_cast<Transform*>(&n) || dynamic_cast<Switch*>(&n) || dynamic_cast<Material*>(&n) ||
-        dynamic_cast<ClipPlane*>(&n) || dynamic_cast<Background*>(&n))
+        dynamic_cast<ClipPlane*>(&n) || dynamic_cast<Background*>(&n) ||
+        dynamic_cast<MatrixTransform*>(&n))
       for (Field* f : n.fields()) fields_.push_back(f);
   });
   mark();

@@ -6,6 +6,7 @@
 #include "millsim/std/BooleanToggle.h"
 #include "millsim/std/Box.h"
 #include "millsim/std/ClipPlane.h"
+#include "millsim/std/Collision.h"
 #include "millsim/std/Cylinder.h"
 #include "millsim/std/Group.h"
 #include "millsim/std/ImportLibrary.h"
@@ -13,6 +14,7 @@
 #include "millsim/std/IntegerTrigger.h"
 #include "millsim/std/KeySensor.h"
 #include "millsim/std/Material.h"
+#include "millsim/std/MatrixTransform.h"
 #include "millsim/std/NavigationInfo.h"
 #include "millsim/std/OrientationInterpolator.h"
 #include "millsim/std/PositionInterpolator.h"
@@ -35,7 +37,10 @@ void registerStandardNodes(NodeRegistry& r) {
                             // The event nodes and Switch (driven by EventClock, drawn through SceneWalk).
                             &BooleanFilter::type(), &BooleanToggle::type(), &IntegerTrigger::type(), &KeySensor::type(),
                             &OrientationInterpolator::type(), &PositionInterpolator::type(),
-                            &ScalarInterpolator::type(), &Switch::type(), &TimeSensor::type()})
+                            &ScalarInterpolator::type(), &Switch::type(), &TimeSensor::type(),
+                            &Collision::type(),
+                            // H3DAPI's, not X3D standard.
+                            &MatrixTransform::type()})
     r.add(*t);
 }
 

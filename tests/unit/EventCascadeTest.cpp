@@ -14,6 +14,7 @@
 #include "millsim/graphics/SceneView.h"
 #include "millsim/std/EventClock.h"
 #include "millsim/std/KeySensor.h"
+#include "millsim/std/MatrixTransform.h"
 #include "millsim/std/OrientationInterpolator.h"
 #include "millsim/std/ScalarInterpolator.h"
 #include "millsim/std/Switch.h"
@@ -251,6 +252,20 @@ TEST(EventCascade, DrawnFieldsSeeWhatAnEventChanged) {
   drawn.mark();
   events.tick(6.0);
   EXPECT_FALSE(drawn.changed()) << "an inactive sensor changes nothing";
+}
+
+TEST(EventCascade, DrawnFieldsSeeAMatrixTransformsMatrix) {
+  LoadResult r = load(scene(R"(
+    <MatrixTransform DEF="Source"/>
+    <MatrixTransform DEF="Drawn"><Shape><Sphere radius="0.01"/></Shape></MatrixTransform>
+    <ROUTE fromNode="Source" fromField="matrix_changed" toNode="Drawn" toField="set_matrix"/>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  DrawnFields drawn(*r.scene);
+  EXPECT_FALSE(drawn.changed());
+  def<MatrixTransform>(r, "Source").matrix.setFromString("1 0 0 0.01  0 1 0 0  0 0 1 0  0 0 0 1");
+  EXPECT_TRUE(drawn.changed()) << "the routed matrix changed what is drawn";
+  drawn.mark();
+  EXPECT_FLOAT_EQ(def<MatrixTransform>(r, "Drawn").matrix.get()[3][0], 0.01f);
 }
 
 }  // namespace
