@@ -15,6 +15,12 @@
 #include "millsim/std/KeySensor.h"
 #include "millsim/std/Material.h"
 #include "millsim/std/MatrixTransform.h"
+#include "millsim/std/MetadataBoolean.h"
+#include "millsim/std/MetadataDouble.h"
+#include "millsim/std/MetadataFloat.h"
+#include "millsim/std/MetadataInteger.h"
+#include "millsim/std/MetadataSet.h"
+#include "millsim/std/MetadataString.h"
 #include "millsim/std/NavigationInfo.h"
 #include "millsim/std/OrientationInterpolator.h"
 #include "millsim/std/PositionInterpolator.h"
@@ -39,6 +45,9 @@ void registerStandardNodes(NodeRegistry& r) {
                             &OrientationInterpolator::type(), &PositionInterpolator::type(),
                             &ScalarInterpolator::type(), &Switch::type(), &TimeSensor::type(),
                             &Collision::type(),
+                            // Metadata: what any node's metadata field (and a MetadataSet) holds.
+                            &MetadataBoolean::type(), &MetadataDouble::type(), &MetadataFloat::type(),
+                            &MetadataInteger::type(), &MetadataSet::type(), &MetadataString::type(),
                             // H3DAPI's, not X3D standard.
                             &MatrixTransform::type()})
     r.add(*t);

@@ -179,8 +179,8 @@ std::vector<ProtoFieldDecl> readProtoFields(Document& doc, const xmlNode* parent
     }
     const xmlAttr* value = findAttr(c, "value");
     const bool hasNodes = [&] {
-      for (const xmlNode* k = c->children; k; k = k->next)
-        if (k->type == XML_ELEMENT_NODE) return true;
+      for (const xmlNode* k = c->children; k; k = k->next)  // metadata about the field changes nothing
+        if (k->type == XML_ELEMENT_NODE && nameOf(k).rfind("Metadata", 0) != 0) return true;
       return false;
     }();
     if ((value || hasNodes) && (!withValues || !settableInFile(f.access))) {

@@ -1,4 +1,4 @@
-// MatrixTransform and Collision as the loader reads them
+// MatrixTransform, Collision and the metadata nodes as the loader reads them
 // and as SceneWalk (and so haptics and graphics) sees them.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,14 @@
 #include "SceneText.h"
 #include "millsim/core/Scene.h"
 #include "millsim/std/Collision.h"
+#include "millsim/std/Material.h"
 #include "millsim/std/MatrixTransform.h"
+#include "millsim/std/MetadataBoolean.h"
+#include "millsim/std/MetadataDouble.h"
+#include "millsim/std/MetadataFloat.h"
+#include "millsim/std/MetadataInteger.h"
+#include "millsim/std/MetadataSet.h"
+#include "millsim/std/MetadataString.h"
 #include "millsim/std/SceneWalk.h"
 #include "millsim/std/Shape.h"
 
@@ -106,6 +113,49 @@ TEST(Collision, ShowsItsChildrenButNotItsProxy) {
   EXPECT_FALSE(c.enabled.get());
   EXPECT_EQ(c.children.get().size(), 1u);
   ASSERT_TRUE(c.proxy.get());
+}
+
+TEST(Metadata, LoadsUnderAnyNodeAndInsideASet) {
+  LoadResult r = load(scene(R"(
+    <Transform DEF="T">
+      <MetadataString DEF="Author" name="author" value='"Blender" "4.1"' reference="https://blender.org"/>
+      <Shape DEF="S">
+        <MetadataSet DEF="Set" name="export">
+          <MetadataInteger DEF="I" name="version" value="1 2 3"/>
+          <MetadataFloat name="scale" value="0.5" containerField="value"/>
+          <MetadataDouble name="precise" value="0.1"/>
+          <MetadataBoolean name="flags" value="true false"/>
+          <MetadataString containerField="metadata" name="about the set"/>
+        </MetadataSet>
+        <Appearance><Material DEF="Mat"><MetadataFloat DEF="F" name="ior" value="1.5"/></Material></Appearance>
+        <Sphere radius="0.01"><MetadataBoolean name="generated" value="true"/></Sphere>
+      </Shape>
+    </Transform>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  EXPECT_TRUE(r.diagnostics.empty()) << r.report();
+  auto& author = def<MetadataString>(r, "Author");
+  EXPECT_EQ(author.value.get(), (std::vector<std::string>{"Blender", "4.1"}));
+  EXPECT_EQ(author.reference.get(), "https://blender.org");
+  EXPECT_EQ(def<Transform>(r, "T").metadata.get().get(), &author);
+  auto& set = def<MetadataSet>(r, "Set");
+  EXPECT_EQ(def<Shape>(r, "S").metadata.get().get(), &set);
+  ASSERT_EQ(set.value.get().size(), 4u) << "metadata nodes inside a set are its values";
+  EXPECT_EQ(set.value.get()[0].get(), &def<MetadataInteger>(r, "I"));
+  EXPECT_EQ(def<MetadataInteger>(r, "I").value.get(), (std::vector<std::int32_t>{1, 2, 3}));
+  ASSERT_TRUE(set.metadata.get());
+  EXPECT_EQ(set.metadata.get()->typeName(), "MetadataString");
+  EXPECT_EQ(def<Material>(r, "Mat").metadata.get().get(), &def<MetadataFloat>(r, "F"));
+}
+
+TEST(Metadata, OnlyMetadataNodesFitTheMetadataField) {
+  LoadResult r = load(scene(R"(
+    <Group><Shape containerField="metadata"><Sphere/></Shape></Group>)"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(firstError(r).message.find("X3DMetadataObject"), std::string::npos) << r.report();
+  LoadResult two = load(scene(R"(
+    <Group><MetadataString name="a"/><MetadataString name="b"/></Group>)"));
+  ASSERT_FALSE(two.ok());
+  EXPECT_NE(firstError(two).message.find("already holds"), std::string::npos) << two.report();
 }
 
 }  // namespace
