@@ -7,6 +7,7 @@
 #include "millsim/std/Box.h"
 #include "millsim/std/ClipPlane.h"
 #include "millsim/std/Collision.h"
+#include "millsim/std/ColorInterpolator.h"
 #include "millsim/std/Cylinder.h"
 #include "millsim/std/Group.h"
 #include "millsim/std/ImportLibrary.h"
@@ -44,7 +45,7 @@ void registerStandardNodes(NodeRegistry& r) {
                             &BooleanFilter::type(), &BooleanToggle::type(), &IntegerTrigger::type(), &KeySensor::type(),
                             &OrientationInterpolator::type(), &PositionInterpolator::type(),
                             &ScalarInterpolator::type(), &Switch::type(), &TimeSensor::type(),
-                            &Collision::type(),
+                            &ColorInterpolator::type(), &Collision::type(),
                             // Metadata: what any node's metadata field (and a MetadataSet) holds.
                             &MetadataBoolean::type(), &MetadataDouble::type(), &MetadataFloat::type(),
                             &MetadataInteger::type(), &MetadataSet::type(), &MetadataString::type(),
