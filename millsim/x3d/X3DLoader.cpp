@@ -456,7 +456,10 @@ private:
     if (!nf || !settableInFile(nf->access())) {
       std::vector<std::string> nodeFields;
       for (Field* pf : parent.fields())
-        if (pf->isNodeField() && settableInFile(pf->access())) nodeFields.emplace_back(pf->name());
+        // Every node's metadata field is named only when the child could go there.
+        if (pf->isNodeField() && settableInFile(pf->access()) &&
+            (pf != &parent.metadata || parent.metadata.accepts(*child)))
+          nodeFields.emplace_back(pf->name());
       std::string where = nodeFields.empty() ? parent.typeName() + " takes no child nodes"
                                              : parent.typeName() + "'s node fields are " + joinNames(nodeFields);
       SourceLocation at = locateAttr(doc, childTag, "containerField", childLoc);
