@@ -110,7 +110,8 @@ template <class X> X scaled(X x, double f) {
   else return X(x * f);
 }
 // Converts one value written in `units` to SI: the numbers of quantity `q`
-// (only the last one for a plane equation), and a rotation's angle.
+// (only the last one for a plane equation, only the translation of a matrix),
+// and a rotation's angle.
 template <class T> void convertToSI(T& v, const Quantity& q, const UnitScale& units) {
   if constexpr (std::is_same_v<T, Rotation>) {
     v.angle = scaled(v.angle, units.angle);
@@ -121,6 +122,10 @@ template <class T> void convertToSI(T& v, const Quantity& q, const UnitScale& un
     if (q.minusOneIsNone && v == T(-1)) return;
     const double f = units.factor(q);
     for (int i = q.lastOnly ? T::length() - 1 : 0; i < T::length(); ++i) v[i] = scaled(v[i], f);
+  } else if constexpr (std::is_same_v<T, glm::mat4>) {
+    const double f = units.factor(q);
+    for (int col = q.translationOnly ? 3 : 0; col < 4; ++col)
+      for (int row = 0; row < (q.translationOnly ? 3 : 4); ++row) v[col][row] = scaled(v[col][row], f);
   }
 }
 }  // namespace detail
@@ -165,6 +170,7 @@ public:
 
 protected:
   void check(const T& v) const {
+    validate(v);  // first: GCC 12 -O3 dropped asFloat's rounding below when this call came after it
     if (!range_) return;
     const Range r = storesFloats<T>() ? range_->asFloat() : *range_;
     X3DValue<T>::numbers(v, [&](double x) {
@@ -172,6 +178,9 @@ protected:
         throw ValueError("value " + formatComponent(x) + " is outside the expected range " + range_->str());
     });
   }
+  // A constraint beyond the range that a field class adds (an invertible
+  // matrix): throws ValueError saying what was expected.
+  virtual void validate(const T&) const {}
   void assignFrom(const Field& source) override { value_ = static_cast<const SField&>(source).get(); }
 
   mutable T value_;
@@ -247,6 +256,7 @@ using SFVec3d = SField<glm::dvec3>;
 using SFVec4f = SField<glm::vec4>;
 using SFRotation = SField<Rotation>;
 using SFColor = SField<Color>;
+using SFMatrix4f = SField<glm::mat4>;
 using MFBool = MField<bool>;
 using MFInt32 = MField<std::int32_t>;
 using MFFloat = MField<float>;

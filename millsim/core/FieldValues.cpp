@@ -9,11 +9,11 @@
 namespace millsim {
 
 std::string_view fieldTypeName(FieldType t) {
-  static constexpr std::array<std::string_view, 26> names = {
+  static constexpr std::array<std::string_view, 27> names = {
       "SFBool", "SFInt32", "SFFloat", "SFDouble", "SFTime", "SFString", "SFVec2f", "SFVec3f",
       "SFVec3d", "SFRotation", "SFColor", "SFNode", "MFBool", "MFInt32", "MFFloat", "MFDouble",
       "MFTime", "MFString", "MFVec2f", "MFVec3f", "MFVec3d", "MFRotation", "MFColor", "MFNode",
-      "SFVec4f", "MFVec4f"};
+      "SFVec4f", "MFVec4f", "SFMatrix4f"};
   return names.at(static_cast<std::size_t>(t));
 }
 
@@ -168,6 +168,14 @@ glm::dvec3 X3DValue<glm::dvec3>::read(ValueLexer& lx) {
   return {x, y, z};
 }
 
+glm::mat4 X3DValue<glm::mat4>::read(ValueLexer& lx) {
+  const char* what = "16 numbers (a 4x4 matrix, row by row)";
+  glm::mat4 m(1.f);
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) m[col][row] = readReal<float>(lx, what);
+  return m;
+}
+
 Rotation X3DValue<Rotation>::read(ValueLexer& lx) {
   const char* what = "4 numbers (axis x y z, angle in radians)";
   glm::vec3 axis;
@@ -220,6 +228,14 @@ void X3DValue<glm::dvec3>::write(const glm::dvec3& v, std::string& out) {
 void X3DValue<Rotation>::write(const Rotation& v, std::string& out) {
   X3DValue<glm::vec3>::write(v.axis, out);
   out += ' ' + formatNumber(v.angle);
+}
+
+void X3DValue<glm::mat4>::write(const glm::mat4& v, std::string& out) {
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) {
+      if (row || col) out += ' ';
+      out += formatNumber(v[col][row]);
+    }
 }
 
 template <> std::string parseSingle<std::string>(std::string_view text) { return std::string(text); }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -24,6 +25,7 @@ enum class FieldType : std::uint8_t {
   SFBool, SFInt32, SFFloat, SFDouble, SFTime, SFString, SFVec2f, SFVec3f, SFVec3d, SFRotation, SFColor, SFNode,
   MFBool, MFInt32, MFFloat, MFDouble, MFTime, MFString, MFVec2f, MFVec3f, MFVec3d, MFRotation, MFColor, MFNode,
   SFVec4f, MFVec4f,  // appended so that the values above keep their numbers
+  SFMatrix4f,
 };
 std::string_view fieldTypeName(FieldType t);
 
@@ -113,7 +115,7 @@ inline std::string formatComponent(double v) {
 // compare against the bounds as floats).
 template <class T> constexpr bool storesFloats() {
   return std::is_same_v<T, float> || std::is_same_v<T, glm::vec2> || std::is_same_v<T, glm::vec3> ||
-         std::is_same_v<T, glm::vec4> || std::is_same_v<T, Color>;
+         std::is_same_v<T, glm::vec4> || std::is_same_v<T, Color> || std::is_same_v<T, glm::mat4>;
 }
 
 // X3DValue<T>: read one value of T from the lexer, write it back, and list its numbers.
@@ -190,6 +192,21 @@ template <> struct X3DValue<Color> {
   static Color read(ValueLexer& lx);
   static void write(const Color& v, std::string& out) { X3DValue<glm::vec3>::write(v.rgb, out); }
   template <class F> static void numbers(const Color& v, F&& f) { f(v.rgb.r), f(v.rgb.g), f(v.rgb.b); }
+};
+
+// SFMatrix4f (H3DAPI's MatrixTransform.matrix; no MFMatrix4f). Written as
+// H3DAPI reads and writes a Matrix4f (X3DFieldConversion.h: m[0][0], m[0][1],
+// ... of its row-major matrix): row by row, so the translation is the 4th, 8th
+// and 12th number ("1 0 0 tx  0 1 0 ty  0 0 1 tz  0 0 0 1"). Stored as glm
+// keeps it (m[column][row]).
+template <> struct X3DValue<glm::mat4> {
+  static constexpr FieldType sf = FieldType::SFMatrix4f;
+  static glm::mat4 read(ValueLexer& lx);
+  static void write(const glm::mat4& v, std::string& out);
+  template <class F> static void numbers(const glm::mat4& v, F&& f) {
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col) f(double(v[col][row]));
+  }
 };
 
 // Whole-attribute parsing for single and multiple values.

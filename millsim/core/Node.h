@@ -14,6 +14,52 @@
 
 namespace millsim {
 
+class Node;
+
+// The common parent of node fields: the loader fills them without knowing the
+// node class they expect.
+class NodeFieldBase : public Field {
+public:
+  using Field::Field;
+  // Name of the node kind this field accepts, e.g. "X3DChildNode".
+  virtual std::string_view acceptsKind() const = 0;
+  virtual bool accepts(const Node& n) const = 0;
+  // Adds a node (MFNode) or sets it (SFNode). Throws ValueError if not accepted
+  // or, for SFNode, already set.
+  virtual void add(std::shared_ptr<Node> n) = 0;
+  virtual std::vector<std::shared_ptr<Node>> nodes() const = 0;
+
+  void setFromString(std::string_view) override {
+    throw ValueError("node fields take child elements, not an attribute value");
+  }
+};
+
+// X3D's `metadata` field, which every node has (X3DNode): one metadata node
+// (MetadataString, MetadataSet, ...; X3DMetadataObject) about its owner.
+// Node itself declares it, so it is not a template of a kind declared after Node.
+class MetadataField : public NodeFieldBase {
+public:
+  explicit MetadataField(Node* owner);
+  const std::shared_ptr<Node>& get() const {
+    refresh();
+    return value_;
+  }
+  void set(std::shared_ptr<Node> n);
+  FieldType type() const override { return FieldType::SFNode; }
+  std::string toString() const override;
+  std::string_view acceptsKind() const override;
+  bool accepts(const Node& n) const override;
+  void add(std::shared_ptr<Node> n) override;
+  std::vector<std::shared_ptr<Node>> nodes() const override {
+    if (get()) return {get()};
+    return {};
+  }
+
+protected:
+  void assignFrom(const Field& source) override { value_ = static_cast<const MetadataField&>(source).get(); }
+  mutable std::shared_ptr<Node> value_;
+};
+
 class Node : public std::enable_shared_from_this<Node> {
 public:
   // Node fields name the kind of node they take; a kind is a class derived from
@@ -43,6 +89,9 @@ public:
   // False: graphics do not draw this node's descendants (an assessment
   // region's shapes mark where it is; they are not something to see).
   virtual bool showsDescendants() const { return true; }
+  // False: graphics do not draw what this one of its node fields holds (a
+  // Collision's proxy, which is only for collision); its other fields are drawn.
+  virtual bool showsField(const Field&) const { return true; }
   // True: descendants that are shown are drawn see-through (an assessment
   // region made visible shows where it is without hiding the tooth).
   virtual bool showsDescendantsTranslucent() const { return false; }
@@ -53,24 +102,11 @@ private:
   std::vector<Field*> fields_;
   std::string defName_;
   SourceLocation location_;
-};
 
-// The common parent of node fields: the loader fills them without knowing the
-// node class they expect.
-class NodeFieldBase : public Field {
 public:
-  using Field::Field;
-  // Name of the node kind this field accepts, e.g. "X3DChildNode".
-  virtual std::string_view acceptsKind() const = 0;
-  virtual bool accepts(const Node& n) const = 0;
-  // Adds a node (MFNode) or sets it (SFNode). Throws ValueError if not accepted
-  // or, for SFNode, already set.
-  virtual void add(std::shared_ptr<Node> n) = 0;
-  virtual std::vector<std::shared_ptr<Node>> nodes() const = 0;
-
-  void setFromString(std::string_view) override {
-    throw ValueError("node fields take child elements, not an attribute value");
-  }
+  // Declared after fields_ (so that it can register), before every derived
+  // class's fields: the first field of every node, as in X3D's tables.
+  MetadataField metadata{this};
 };
 
 // SFNode restricted to nodes of class T (a Node kind with its own kindName).

@@ -26,4 +26,11 @@ public:
   static constexpr std::string_view kindName = "X3DMaterialNode";
 };
 
+// A metadata node (MetadataBoolean, ..., MetadataSet): what a node's
+// `metadata` field and a MetadataSet's `value` hold.
+class MetadataObject : public Node {
+public:
+  static constexpr std::string_view kindName = "X3DMetadataObject";
+};
+
 }  // namespace millsim

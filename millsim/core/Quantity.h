@@ -21,6 +21,9 @@ struct Quantity {
   std::int8_t force = 0;
   // Only the last number of each value carries the quantity (a plane equation's d).
   bool lastOnly = false;
+  // Only the translation of a 4×4 matrix (its 4th column) carries the quantity
+  // (MatrixTransform.matrix: rotation and scale are dimensionless).
+  bool translationOnly = false;
   // A value of exactly -1 means "none" (X3D's bboxSize, Viewpoint's nearDistance)
   // and stays -1 in any unit.
   bool minusOneIsNone = false;

@@ -19,7 +19,7 @@ namespace {
 
 struct FoundDevice {
   HapticsDevice* device;
-  const Transform* transform;  // the innermost Transform around it, or null
+  const TransformingNode* transform;  // the innermost Transform around it, or null
 };
 
 std::string describe(const Node& n) {
@@ -27,7 +27,7 @@ std::string describe(const Node& n) {
          n.location().str();
 }
 
-void findDevices(Node& n, const Transform* around, std::vector<FoundDevice>& out) {
+void findDevices(Node& n, const TransformingNode* around, std::vector<FoundDevice>& out) {
   if (auto* d = dynamic_cast<HapticsDevice*>(&n)) {
     const bool seen = std::any_of(out.begin(), out.end(), [&](const FoundDevice& f) { return f.device == d; });
     if (!seen) out.push_back({d, around});
@@ -36,7 +36,7 @@ void findDevices(Node& n, const Transform* around, std::vector<FoundDevice>& out
         if (f.device == d && !f.transform) f.transform = around;  // a USE of it inside a Transform
     return;  // a device's own node fields hold its tool and renderer, never another device
   }
-  if (auto* t = dynamic_cast<const Transform*>(&n)) around = t;
+  if (auto* t = dynamic_cast<const TransformingNode*>(&n)) around = t;
   for (Field* f : n.fields())
     if (auto* nf = dynamic_cast<NodeFieldBase*>(f))
       for (const auto& child : nf->nodes()) findDevices(*child, around, out);

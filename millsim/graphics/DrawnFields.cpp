@@ -10,6 +10,7 @@
 #include "millsim/std/FontStyle.h"
 #include "millsim/std/LightNode.h"
 #include "millsim/std/Material.h"
+#include "millsim/std/MatrixTransform.h"
 #include "millsim/std/NavigationInfo.h"
 #include "millsim/std/Normal.h"
 #include "millsim/std/Text.h"
@@ -25,7 +26,7 @@ DrawnFields::DrawnFields(const Scene& scene) {
         dynamic_cast<ClipPlane*>(&n) || dynamic_cast<Background*>(&n) || dynamic_cast<Text*>(&n) ||
         dynamic_cast<FontStyle*>(&n) || dynamic_cast<LightNode*>(&n) || dynamic_cast<NavigationInfo*>(&n) ||
         dynamic_cast<Coordinate*>(&n) || dynamic_cast<Normal*>(&n) || dynamic_cast<ColorNode*>(&n) ||
-        dynamic_cast<TextureCoordinate*>(&n))
+        dynamic_cast<TextureCoordinate*>(&n) || dynamic_cast<MatrixTransform*>(&n))
       for (Field* f : n.fields()) fields_.push_back(f);
   });
   mark();

@@ -101,7 +101,7 @@ RegionAccounting::RegionAccounting(const Scene& scene) {
     auto r = std::make_unique<Region>();
     r->node = node;
     std::function<void(const Node&, const glm::dmat4&)> gather = [&](const Node& c, const glm::dmat4& m) {
-      if (const auto* t = dynamic_cast<const Transform*>(&c)) {
+      if (const auto* t = dynamic_cast<const TransformingNode*>(&c)) {
         const glm::dmat4 inner = m * glm::dmat4(t->localMatrix());
         for (const auto& k : t->children.get()) gather(*k, inner);
       } else if (const auto* g = dynamic_cast<const GroupingNode*>(&c)) {

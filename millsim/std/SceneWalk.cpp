@@ -33,20 +33,22 @@ void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& c
     auto showsChild = [&](const Node& child) { return !sw || nf != &sw->children || &child == chosen; };
     std::vector<glm::dvec4> scoped = clips;
     for (const auto& child : children)
-      if (auto* cp = dynamic_cast<ClipPlane*>(child.get()); cp && cp->enabled.get() && showsChild(*cp)) {
+      if (auto* cp = dynamic_cast<ClipPlane*>(child.get()); cp && cp->enabled.get() && showsChild(*cp) && n.showsField(*f)) {
         // Planes transform by the inverse transpose of the node's frame.
         const glm::dvec4 p = glm::transpose(glm::inverse(m)) * glm::dvec4(cp->plane.get());
         const double len = glm::length(glm::dvec3(p));
         if (len > 0.0 && std::isfinite(len)) scoped.push_back(p / len);
       }
-    for (const auto& child : children) walk(*child, m, scoped, shown && showsChild(*child), translucent, visit);
+    // A field the node does not show (a Collision's proxy) is walked, not shown.
+    const bool fieldShown = shown && n.showsField(*f);
+    for (const auto& child : children) walk(*child, m, scoped, fieldShown && showsChild(*child), translucent, visit);
   }
 }
 
 void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
           const Visit& visit) {
   glm::dmat4 m = parent;
-  if (auto* t = dynamic_cast<Transform*>(&n)) m = parent * glm::dmat4(t->localMatrix());
+  if (auto* t = dynamic_cast<TransformingNode*>(&n)) m = parent * glm::dmat4(t->localMatrix());
   visit(n, WalkFrame{m, &clips, shown, translucent});
   walkChildren(n, m, clips, shown && n.showsDescendants(), translucent || n.showsDescendantsTranslucent(), visit);
 }

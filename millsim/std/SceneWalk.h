@@ -1,7 +1,8 @@
 #pragma once
 // The one walk over a scene that knows where things are: every node under the
 // root, depth first in document order (into every node field, Inline contents
-// included; a USEd node once per use), with its accumulated Transform and the
+// included; a USEd node once per use), with its accumulated Transform (or
+// MatrixTransform) and the
 // ClipPlanes in scope. The haptic scene and the graphics scene view both walk
 // with it, so they see the same volumes in the same order.
 #include <functional>
@@ -20,7 +21,8 @@ struct WalkFrame {
   // World-space planes (a, b, c, d) with unit normals; a point p stays when
   // dot(plane, (p, 1)) >= 0. A ClipPlane clips its siblings and their descendants.
   const std::vector<glm::dvec4>* clipPlanes = nullptr;
-  // False under a node whose showsDescendants() is false, or under a Switch
+  // False under a node whose showsDescendants() is false, in a node field its
+  // node does not show (showsField: a Collision's proxy), or under a Switch
   // child other than the chosen one: not to be drawn.
   bool shown = true;
   // True under a node whose showsDescendantsTranslucent() is true (a visible assessment region).

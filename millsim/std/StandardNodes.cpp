@@ -6,6 +6,8 @@
 #include "millsim/std/BooleanToggle.h"
 #include "millsim/std/Box.h"
 #include "millsim/std/ClipPlane.h"
+#include "millsim/std/Collision.h"
+#include "millsim/std/ColorInterpolator.h"
 #include "millsim/std/ColorNode.h"
 #include "millsim/std/Cone.h"
 #include "millsim/std/Coordinate.h"
@@ -21,6 +23,13 @@
 #include "millsim/std/IntegerTrigger.h"
 #include "millsim/std/KeySensor.h"
 #include "millsim/std/Material.h"
+#include "millsim/std/MatrixTransform.h"
+#include "millsim/std/MetadataBoolean.h"
+#include "millsim/std/MetadataDouble.h"
+#include "millsim/std/MetadataFloat.h"
+#include "millsim/std/MetadataInteger.h"
+#include "millsim/std/MetadataSet.h"
+#include "millsim/std/MetadataString.h"
 #include "millsim/std/NavigationInfo.h"
 #include "millsim/std/Normal.h"
 #include "millsim/std/NumberToText.h"
@@ -55,7 +64,13 @@ void registerStandardNodes(NodeRegistry& r) {
                             &FontStyle::type(), &ImageTexture::type(), &IndexedFaceSet::type(), &IndexedTriangleSet::type(),
                             &Normal::type(), &PointLight::type(), &SpotLight::type(), &Text::type(), &TextureCoordinate::type(),
                             // MillSim's own: a number shown as text.
-                            &NumberToText::type()})
+                            &NumberToText::type(),
+                            &ColorInterpolator::type(), &Collision::type(),
+                            // Metadata: what any node's metadata field (and a MetadataSet) holds.
+                            &MetadataBoolean::type(), &MetadataDouble::type(), &MetadataFloat::type(),
+                            &MetadataInteger::type(), &MetadataSet::type(), &MetadataString::type(),
+                            // H3DAPI's, not X3D standard.
+                            &MatrixTransform::type()})
     r.add(*t);
 }
 

@@ -5,8 +5,17 @@
 
 namespace millsim {
 
+// A grouping node that places its children in a frame of their own
+// (Transform, MatrixTransform). SceneWalk, and so haptics, graphics and the
+// assessment regions, apply localMatrix() to everything under it.
+class TransformingNode : public GroupingNode {
+public:
+  // Child frame to parent frame.
+  virtual glm::mat4 localMatrix() const = 0;
+};
+
 // Places its children in a new frame: translation, rotation and scale about a centre.
-class Transform : public GroupingNode {
+class Transform : public TransformingNode {
 public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
@@ -20,7 +29,7 @@ public:
   SFVec3f center{this, "center", Access::InputOutput, glm::vec3(0.f), "Centre of rotation and scale (m).", Range::closed(-1e4, 1e4).in(quantity::length)};
 
   // The X3D transform: T·C·R·SR·S·SR⁻¹·C⁻¹, child frame to parent frame.
-  glm::mat4 localMatrix() const;
+  glm::mat4 localMatrix() const override;
 };
 
 }  // namespace millsim

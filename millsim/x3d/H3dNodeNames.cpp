@@ -23,7 +23,7 @@ constexpr H3dNodeName kNames[] = {
     {"ForceField", H3dNodeKind::Other},             {"SpringEffect", H3dNodeKind::Other},
     {"PositionFunctionEffect", H3dNodeKind::Other}, {"ViscosityEffect", H3dNodeKind::Other},
     {"TimeFunctionEffect", H3dNodeKind::Other},     {"HapticLayeredGroup", H3dNodeKind::Other},
-    {"HapticShapeConstraint", H3dNodeKind::Other},  {"MatrixTransform", H3dNodeKind::Other},
+    {"HapticShapeConstraint", H3dNodeKind::Other},
     {"FitToBoxTransform", H3dNodeKind::Other},      {"PythonScript", H3dNodeKind::Other},
     {"DynamicTransform", H3dNodeKind::Other},       {"GlobalSettings", H3dNodeKind::Other},
     {"DefaultAppearance", H3dNodeKind::Other},      {"HapticsOptions", H3dNodeKind::Other},

@@ -32,7 +32,7 @@ std::vector<std::string> ProtoScope::names() const {
 }
 
 std::optional<FieldType> fieldTypeFromName(std::string_view name) {
-  for (int i = 0; i <= static_cast<int>(FieldType::MFVec4f); ++i)
+  for (int i = 0; i <= static_cast<int>(FieldType::SFMatrix4f); ++i)
     if (fieldTypeName(static_cast<FieldType>(i)) == name) return static_cast<FieldType>(i);
   return std::nullopt;
 }
@@ -106,6 +106,9 @@ std::optional<std::string> invalidValue(FieldType type, std::string_view text) {
       case FieldType::MFColor:
         parseAs<Color>(type, text);
         break;
+      case FieldType::SFMatrix4f:
+        (void)parseSingle<glm::mat4>(text);
+        break;
       case FieldType::SFNode:
       case FieldType::MFNode:
         return std::string("a node field takes child node elements");
@@ -176,8 +179,8 @@ std::vector<ProtoFieldDecl> readProtoFields(Document& doc, const xmlNode* parent
     }
     const xmlAttr* value = findAttr(c, "value");
     const bool hasNodes = [&] {
-      for (const xmlNode* k = c->children; k; k = k->next)
-        if (k->type == XML_ELEMENT_NODE) return true;
+      for (const xmlNode* k = c->children; k; k = k->next)  // metadata about the field changes nothing
+        if (k->type == XML_ELEMENT_NODE && nameOf(k).rfind("Metadata", 0) != 0) return true;
       return false;
     }();
     if ((value || hasNodes) && (!withValues || !settableInFile(f.access))) {

@@ -308,7 +308,8 @@ std::shared_ptr<Node> ProtoReader::expandBody(const ProtoDecl& decl, ProtoInstan
   for (auto& [fieldName, f] : inst.fields()) {
     if (!isNodeType(f.decl->type) || f.nodesGiven || !settableInFile(f.decl->access)) continue;
     for (xmlNode* c = f.decl->element->children; c && !sink_.full(); c = c->next) {
-      if (c->type != XML_ELEMENT_NODE) continue;
+      // Metadata about the field declaration is not one of its default nodes.
+      if (c->type != XML_ELEMENT_NODE || nameOf(c).rfind("Metadata", 0) == 0) continue;
       std::size_t childTag;
       SourceLocation childLoc = body.locate(c, &childTag);
       if (auto node = host_.readNodeElement(body, c, childTag, childLoc, ancestors)) f.nodes.push_back(std::move(node));

@@ -10,6 +10,7 @@
 
 #include "millsim/std/ImportLibrary.h"
 #include "millsim/std/Inline.h"
+#include "millsim/std/MetadataSet.h"
 #include "millsim/x3d/H3dNodeNames.h"
 #include "millsim/x3d/ProtoReader.h"
 #include "millsim/x3d/SceneFileText.h"
@@ -389,6 +390,9 @@ private:
       if (!child) return;
       // containerField chooses the parent field; otherwise the child type's default.
       std::string fieldName = child->nodeType().containerField;
+      // X3D 4.0: a metadata node inside a MetadataSet is one of its values; elsewhere it is the node's metadata.
+      if (dynamic_cast<const MetadataSet*>(node.get()) && dynamic_cast<const MetadataObject*>(child.get()))
+        fieldName = "value";
       if (const xmlAttr* cf = findAttr(c, "containerField")) fieldName = attrValue(doc.xml, cf);
       placeChild(doc, *node, child, fieldName, childTag, childLoc);
     });
@@ -452,7 +456,10 @@ private:
     if (!nf || !settableInFile(nf->access())) {
       std::vector<std::string> nodeFields;
       for (Field* pf : parent.fields())
-        if (pf->isNodeField() && settableInFile(pf->access())) nodeFields.emplace_back(pf->name());
+        // Every node's metadata field is named only when the child could go there.
+        if (pf->isNodeField() && settableInFile(pf->access()) &&
+            (pf != &parent.metadata || parent.metadata.accepts(*child)))
+          nodeFields.emplace_back(pf->name());
       std::string where = nodeFields.empty() ? parent.typeName() + " takes no child nodes"
                                              : parent.typeName() + "'s node fields are " + joinNames(nodeFields);
       SourceLocation at = locateAttr(doc, childTag, "containerField", childLoc);

@@ -12,8 +12,11 @@
 #include "SceneText.h"
 #include "millsim/graphics/DrawnFields.h"
 #include "millsim/graphics/SceneView.h"
+#include "millsim/std/ColorInterpolator.h"
 #include "millsim/std/EventClock.h"
 #include "millsim/std/KeySensor.h"
+#include "millsim/std/Material.h"
+#include "millsim/std/MatrixTransform.h"
 #include "millsim/std/OrientationInterpolator.h"
 #include "millsim/std/ScalarInterpolator.h"
 #include "millsim/std/Switch.h"
@@ -251,6 +254,53 @@ TEST(EventCascade, DrawnFieldsSeeWhatAnEventChanged) {
   drawn.mark();
   events.tick(6.0);
   EXPECT_FALSE(drawn.changed()) << "an inactive sensor changes nothing";
+}
+
+void expectColor(const Color& c, glm::vec3 want, const char* when) {
+  EXPECT_NEAR(c.rgb.r, want.r, 1e-5) << when;
+  EXPECT_NEAR(c.rgb.g, want.g, 1e-5) << when;
+  EXPECT_NEAR(c.rgb.b, want.b, 1e-5) << when;
+}
+
+// X3D 19.4.1: colours mix in HSV. Red (hue 0°) to blue (240°) goes the shorter
+// way, through magenta (300°), not through green; black to green keeps green's
+// hue and mixes saturation and value. The values below are worked by hand.
+TEST(EventCascade, ColorInterpolatorMixesInHsvTheShorterWayRound) {
+  LoadResult r = load(scene(R"(
+    <Shape><Appearance><Material DEF="Mat"/></Appearance><Sphere radius="0.01"/></Shape>
+    <TimeSensor DEF="Clock" cycleInterval="4"/>
+    <ColorInterpolator DEF="RedBlue" key="0 1" keyValue="1 0 0, 0 0 1"/>
+    <ColorInterpolator DEF="BlackGreen" key="0 1" keyValue="0 0 0, 0 1 0"/>
+    <ROUTE fromNode="Clock" fromField="fraction_changed" toNode="RedBlue" toField="set_fraction"/>
+    <ROUTE fromNode="Clock" fromField="fraction_changed" toNode="BlackGreen" toField="set_fraction"/>
+    <ROUTE fromNode="RedBlue" fromField="value_changed" toNode="Mat" toField="set_diffuseColor"/>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  auto& mat = def<Material>(r, "Mat");
+  const auto& blackGreen = def<ColorInterpolator>(r, "BlackGreen");
+  EventClock events(*r.scene);
+  events.advanceTo(1.0);  // fraction 0.25: hue 0° - 60° = 330°, s = v = 1
+  expectColor(mat.diffuseColor.get(), {1.f, 0.f, 0.5f}, "t = 1 s");
+  // hue 120°, s = v = 0.25: (v(1 - s), v, v(1 - s)); an RGB mix would give (0, 0.25, 0)
+  expectColor(blackGreen.value_changed.get(), {0.1875f, 0.25f, 0.1875f}, "t = 1 s, black to green");
+  events.advanceTo(2.0);  // fraction 0.5: hue 300°, magenta
+  expectColor(mat.diffuseColor.get(), {1.f, 0.f, 1.f}, "t = 2 s");
+  expectColor(blackGreen.value_changed.get(), {0.25f, 0.5f, 0.25f}, "t = 2 s, black to green");
+  events.advanceTo(4.0);  // the end of the cycle: the last key
+  expectColor(mat.diffuseColor.get(), {0.f, 0.f, 1.f}, "t = 4 s");
+}
+
+TEST(EventCascade, DrawnFieldsSeeAMatrixTransformsMatrix) {
+  LoadResult r = load(scene(R"(
+    <MatrixTransform DEF="Source"/>
+    <MatrixTransform DEF="Drawn"><Shape><Sphere radius="0.01"/></Shape></MatrixTransform>
+    <ROUTE fromNode="Source" fromField="matrix_changed" toNode="Drawn" toField="set_matrix"/>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  DrawnFields drawn(*r.scene);
+  EXPECT_FALSE(drawn.changed());
+  def<MatrixTransform>(r, "Source").matrix.setFromString("1 0 0 0.01  0 1 0 0  0 0 1 0  0 0 0 1");
+  EXPECT_TRUE(drawn.changed()) << "the routed matrix changed what is drawn";
+  drawn.mark();
+  EXPECT_FLOAT_EQ(def<MatrixTransform>(r, "Drawn").matrix.get()[3][0], 0.01f);
 }
 
 }  // namespace

@@ -30,6 +30,8 @@ int components(FieldType t) {
       return 3;
     case FieldType::SFVec4f: case FieldType::SFRotation: case FieldType::MFVec4f: case FieldType::MFRotation:
       return 4;
+    case FieldType::SFMatrix4f:
+      return 16;
     default:
       return 0;
   }
@@ -51,6 +53,15 @@ std::string number(double v, bool isInt) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.9g", v);
   return buf;
+}
+
+// A value of type t with its numbers at x: every number, or for a matrix
+// (which must be invertible) x on the diagonal and 0 elsewhere.
+std::string valueAt(FieldType t, const std::string& x, int n) {
+  if (t != FieldType::SFMatrix4f) return repeated(x, n);
+  std::string s;
+  for (int i = 0; i < 16; ++i) s += (i ? " " : "") + (i % 5 == 0 ? x : std::string("0"));
+  return s;
 }
 
 bool refused(Field& f, const std::string& text) {
@@ -106,18 +117,18 @@ TEST(FieldRanges, ValuesJustOutsideTheRangeNaNAndInfinityAreRefused) {
       const double stepHi = isInt ? 1.0 : 1e-3 * std::max(1.0, std::abs(r->hi));
       const double below = r->loOpen ? r->lo : r->lo - stepLo;
       const double above = r->hiOpen ? r->hi : r->hi + stepHi;
-      EXPECT_TRUE(refused(*f, repeated(number(below, isInt), n))) << where << " accepts " << number(below, isInt);
-      EXPECT_TRUE(refused(*f, repeated(number(above, isInt), n))) << where << " accepts " << number(above, isInt);
+      EXPECT_TRUE(refused(*f, valueAt(f->type(), number(below, isInt), n))) << where << " accepts " << number(below, isInt);
+      EXPECT_TRUE(refused(*f, valueAt(f->type(), number(above, isInt), n))) << where << " accepts " << number(above, isInt);
       if (!isInt) {
-        EXPECT_TRUE(refused(*f, repeated("nan", n))) << where << " accepts NaN";
-        EXPECT_TRUE(refused(*f, repeated("inf", n))) << where << " accepts infinity";
+        EXPECT_TRUE(refused(*f, valueAt(f->type(), "nan", n))) << where << " accepts NaN";
+        EXPECT_TRUE(refused(*f, valueAt(f->type(), "inf", n))) << where << " accepts infinity";
       }
       // Inside the range both ends are accepted (a bound that is too tight would refuse real scenes).
       if (!r->loOpen) {
-        EXPECT_FALSE(refused(*f, repeated(number(r->lo, isInt), n))) << where << " refuses its lower bound";
+        EXPECT_FALSE(refused(*f, valueAt(f->type(), number(r->lo, isInt), n))) << where << " refuses its lower bound";
       }
       if (!r->hiOpen) {
-        EXPECT_FALSE(refused(*f, repeated(number(r->hi, isInt), n))) << where << " refuses its upper bound";
+        EXPECT_FALSE(refused(*f, valueAt(f->type(), number(r->hi, isInt), n))) << where << " refuses its upper bound";
       }
     }
   }

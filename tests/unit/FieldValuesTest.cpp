@@ -39,6 +39,7 @@ public:
   MFVec3d mv3d{this, "mv3d", Access::InputOutput, {}, ""};
   MFRotation mr{this, "mr", Access::InputOutput, {}, ""};
   MFColor mc{this, "mc", Access::InputOutput, {}, ""};
+  SFMatrix4f m4{this, "m4", Access::InputOutput, glm::mat4(1.f), ""};
   SFFloat positive{this, "positive", Access::InputOutput, 1.f, "", Range::positive()};
 };
 
@@ -55,12 +56,38 @@ template <class F> std::string errorOf(F&& f) {
 
 TEST(FieldValues, FieldsRegisterInDeclarationOrderWithTheirTypes) {
   AllTypes n;
-  ASSERT_EQ(n.fields().size(), 23u);
-  EXPECT_EQ(n.fields()[0]->name(), "b");
+  ASSERT_EQ(n.fields().size(), 25u);
+  EXPECT_EQ(n.fields()[0]->name(), "metadata");  // every node's (X3DNode), declared by Node
+  EXPECT_EQ(n.fields()[0]->type(), FieldType::SFNode);
+  EXPECT_EQ(n.fields()[1]->name(), "b");
+  EXPECT_EQ(fieldTypeName(n.field("m4")->type()), "SFMatrix4f");
   EXPECT_EQ(n.field("mv3")->type(), FieldType::MFVec3f);
   EXPECT_EQ(fieldTypeName(n.field("t")->type()), "SFTime");
   EXPECT_EQ(fieldTypeName(n.field("c")->type()), "SFColor");
   EXPECT_EQ(n.field("nope"), nullptr);
+}
+
+// H3DAPI's order: row by row, the translation 4th, 8th and 12th.
+TEST(FieldValues, SFMatrix4fIsReadAndWrittenRowByRow) {
+  AllTypes n;
+  EXPECT_EQ(n.m4.toString(), "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1");
+  n.m4.setFromString("1 0 0 0.01  0 2 0 -2.5,  0 0 1 3  0 0 0 1");
+  const glm::mat4& m = n.m4.get();
+  EXPECT_FLOAT_EQ(m[3][0], 0.01f);  // glm: m[column][row]
+  EXPECT_FLOAT_EQ(m[3][1], -2.5f);
+  EXPECT_FLOAT_EQ(m[3][2], 3.f);
+  EXPECT_FLOAT_EQ(m[1][1], 2.f);
+  EXPECT_FLOAT_EQ(m[0][3], 0.f);
+  const std::string text = n.m4.toString();
+  EXPECT_EQ(text, "1 0 0 0.01 0 2 0 -2.5 0 0 1 3 0 0 0 1");
+  AllTypes copy;
+  copy.m4.setFromString(text);
+  EXPECT_EQ(copy.m4.get(), m);
+  EXPECT_NE(errorOf([&] { n.m4.setFromString("1 0 0 0  0 1 0 0  0 0 1 0"); }).find("16 numbers"), std::string::npos);
+  EXPECT_NE(errorOf([&] { n.m4.setFromString("1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1  7"); }).find("extra text"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { n.m4.setFromString("1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 nan"); }).find("finite"),
+            std::string::npos);
 }
 
 TEST(FieldValues, SFBool) {
