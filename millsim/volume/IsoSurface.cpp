@@ -91,6 +91,9 @@ struct IsoSurfaceMesher::Extractor {
     float scale;
   };
   std::vector<Neighbours> stencil[3];
+  // Sobel's gradient, separably: `padded` smoothed along y and along z, then
+  // each axis's copy smoothed over its two other axes (same layout as padded).
+  std::vector<float> alongY, alongZ, forX, forY, forZ;
   std::optional<Grid::ConstAccessor> accessor;
   // VTK's TBB backend runs its loops in the caller's arena. A chunk is far
   // too small to share between threads: waking TBB's workers for each of
@@ -211,26 +214,6 @@ std::vector<IsoSurfaceMesher::ChunkKey> IsoSurfaceMesher::update(const std::vect
   return changed;
 }
 
-namespace {
-
-// The density's difference along one axis, averaged 1-2-1 over the two other
-// axes (Sobel's operator). The neighbours are the central difference's
-// (clamped at the volume's faces), so the padding and the dirty reach stay
-// one sample.
-template <class Step> float smoothedDifference(const float* v, const Step& along, const Step& p, const Step& q) {
-  const std::ptrdiff_t po[3] = {p.minus, 0, p.plus}, qo[3] = {q.minus, 0, q.plus};
-  constexpr float w[3] = {1.f, 2.f, 1.f};
-  float sum = 0.f;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      const float* c = v + po[a] + qo[b];
-      sum += w[a] * w[b] * (c[along.plus] - c[along.minus]);
-    }
-  return sum * along.scale * (1.f / 16.f);
-}
-
-}  // namespace
-
 void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* changed) {
   Extractor& ex = *extractor_;
   const glm::ivec3 dims = volume_->dims();
@@ -280,17 +263,74 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
       st[std::size_t(i)] = {(vm - v) * stride[a], (vp - v) * stride[a], vp > vm ? 1.f / float(vp - vm) : 0.f};
     }
   }
+  // Sobel's gradient: each axis's central difference, averaged 1-2-1 over
+  // the two other axes. The central difference alone, over the phantom's
+  // one-voxel density ramp, leans towards the grid's axes by where the
+  // surface crosses the voxel, and shades terraces on smooth slopes. The
+  // neighbours are the central difference's (clamped at the volume's faces),
+  // so the padding and the dirty reach stay one sample. Computed separably —
+  // smoothed copies of the padded samples, then differences — at about a
+  // third of the reads of the 3 × 9 taps.
+  const std::size_t box = ex.padded.size();
+  for (auto* b : {&ex.alongY, &ex.alongZ, &ex.forX, &ex.forY, &ex.forZ}) b->resize(box);
+  const float* samples = ex.padded.data();
+  auto at = [&](int x, int y, int z) {
+    return std::size_t(z - p0.z) * std::size_t(stride[2]) + std::size_t(y - p0.y) * std::size_t(stride[1]) + std::size_t(x - p0.x);
+  };
+  // out = in[-1] + 2 in + in[+1] along `axis`, over [from, to] (volume
+  // indices; `axis` within the chunk, where the stencil has its neighbours).
+  auto smooth = [&](const float* in, float* out, int axis, glm::ivec3 from, glm::ivec3 to) {
+    const auto* st = ex.stencil[axis].data();
+    for (int z = from.z; z <= to.z; ++z)
+      for (int y = from.y; y <= to.y; ++y) {
+        const std::size_t r = at(from.x, y, z);
+        if (axis == 0) {
+          for (int x = 0; x <= to.x - from.x; ++x) {
+            const auto& s = st[from.x + x - lo.x];
+            out[r + std::size_t(x)] = in[r + std::size_t(x) + s.minus] + 2.f * in[r + std::size_t(x)] + in[r + std::size_t(x) + s.plus];
+          }
+        } else {
+          const auto& s = st[(axis == 1 ? y : z) - lo[axis]];
+          for (int x = 0; x <= to.x - from.x; ++x)
+            out[r + std::size_t(x)] = in[r + std::size_t(x) + s.minus] + 2.f * in[r + std::size_t(x)] + in[r + std::size_t(x) + s.plus];
+        }
+      }
+  };
+  auto span = [&](int axis0, int axis1) {  // chunk range on the two axes, padded range on the third
+    glm::ivec3 from = p0, to = p1;
+    from[axis0] = lo[axis0], to[axis0] = hi[axis0];
+    from[axis1] = lo[axis1], to[axis1] = hi[axis1];
+    return std::pair{from, to};
+  };
+  auto only = [&](int axis) {  // chunk range on one axis, padded on the others
+    glm::ivec3 from = p0, to = p1;
+    from[axis] = lo[axis], to[axis] = hi[axis];
+    return std::pair{from, to};
+  };
+  {
+    const auto [fy, ty] = only(1);
+    smooth(samples, ex.alongY.data(), 1, fy, ty);
+    const auto [fz, tz] = only(2);
+    smooth(samples, ex.alongZ.data(), 2, fz, tz);
+    const auto [fx1, tx1] = span(1, 2);
+    smooth(ex.alongY.data(), ex.forX.data(), 2, fx1, tx1);  // x padded: differenced along x next
+    const auto [fy1, ty1] = span(0, 2);
+    smooth(ex.alongZ.data(), ex.forY.data(), 0, fy1, ty1);
+    const auto [fz1, tz1] = span(0, 1);
+    smooth(ex.alongY.data(), ex.forZ.data(), 0, fz1, tz1);
+  }
   ex.gradients->SetNumberOfTuples(vtkIdType(n.x) * n.y * n.z);
   float* g = ex.gradients->GetPointer(0);
   const auto *sx = ex.stencil[0].data(), *sy = ex.stencil[1].data(), *sz = ex.stencil[2].data();
+  const float *gx = ex.forX.data(), *gy = ex.forY.data(), *gz = ex.forZ.data();
   for (int k = 0; k < n.z; ++k)
     for (int j = 0; j < n.y; ++j) {
-      const float* src = row(lo.y + j, lo.z + k);
+      const std::size_t r = at(lo.x, lo.y + j, lo.z + k);
       for (int i = 0; i < n.x; ++i, g += 3) {
-        const float* v = src + i;
-        g[0] = smoothedDifference(v, sx[i], sy[j], sz[k]);
-        g[1] = smoothedDifference(v, sy[j], sx[i], sz[k]);
-        g[2] = smoothedDifference(v, sz[k], sx[i], sy[j]);
+        const std::size_t p = r + std::size_t(i);
+        g[0] = (gx[p + sx[i].plus] - gx[p + sx[i].minus]) * sx[i].scale * (1.f / 16.f);
+        g[1] = (gy[p + sy[j].plus] - gy[p + sy[j].minus]) * sy[j].scale * (1.f / 16.f);
+        g[2] = (gz[p + sz[k].plus] - gz[p + sz[k].minus]) * sz[k].scale * (1.f / 16.f);
       }
     }
 
