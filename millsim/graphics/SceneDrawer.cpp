@@ -117,6 +117,9 @@ bool SceneDrawer::adoptView(const SceneView& fresh) {
   if (fresh.volumes.size() != scene_.volumes.size()) return false;
   scene_.shapes = fresh.shapes;  // first, so that adoptCuts sees the same shapes
   scene_.background = fresh.background;
+  scene_.headlight = fresh.headlight;
+  scene_.lights = fresh.lights;
+  for (std::size_t i = 0; i < fresh.volumes.size(); ++i) scene_.volumes[i].lights = fresh.volumes[i].lights;
   return adoptCuts(fresh);
 }
 
@@ -149,6 +152,7 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
 
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
     program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
+    program_->setLights(scene_.volumes[i].lights);
     meshes_[i]->draw();
   }
   std::vector<const DrawShape*> seeThrough;
@@ -188,11 +192,13 @@ void SceneDrawer::drawShape(const DrawShape& s) {
     case DrawShape::Kind::Cylinder:
     case DrawShape::Kind::Box:
       program_->setObject(s.model, s.material, &s.material.diffuse, false, planes);
+      program_->setLights(s.lights);
       (s.kind == DrawShape::Kind::Sphere ? *sphere_ : s.kind == DrawShape::Kind::Cylinder ? *cylinder_ : *box_).draw();
       return;
     case DrawShape::Kind::Mesh: {
       GlMesh& gl = meshFor(s.mesh);
       program_->setObject(s.model, s.material, s.mesh->colours.empty() ? &s.material.diffuse : nullptr, false, planes);
+      program_->setLights(s.lights);
       bool grey = false;
       if (!s.texture.file.empty() && bindTexture(s.texture, grey))
         program_->setTexture(grey ? ShadedProgram::TextureMode::Modulate : ShadedProgram::TextureMode::Replace);
@@ -204,6 +210,7 @@ void SceneDrawer::drawShape(const DrawShape& s) {
       GlMesh* gl = textFor(*s.text, font);
       if (!gl) return;
       program_->setObject(s.model, s.material, &s.material.diffuse, false, planes);
+      program_->setLights(s.lights);
       font->bind();
       program_->setTexture(ShadedProgram::TextureMode::Coverage);
       gl->draw();
@@ -235,15 +242,16 @@ GlMesh* SceneDrawer::textFor(const DrawText& text, FontAtlas*& font) {
     if (c.text == text) return font = c.font, c.gl.get();
   // The first family fontconfig resolves (it always finds one: its substitutes).
   const std::string family = text.family.empty() ? "SERIF" : text.family.front();
-  auto& atlas = fonts_[{family, text.style}];
-  if (!atlas) {
+  auto [slot, fresh] = fonts_.try_emplace({family, text.style});
+  auto& atlas = slot->second;
+  if (fresh) {
     try {
       atlas = std::make_unique<FontAtlas>(family, text.style);
     } catch (const GraphicsError& e) {
-      std::cerr << "millsim: warning: Text is not drawn: " << e.what() << "\n";
-      return nullptr;
+      std::cerr << "millsim: warning: Text is not drawn: " << e.what() << "\n";  // once: the empty slot stays
     }
   }
+  if (!atlas) return nullptr;
   const TriangleMesh mesh = layoutText(text, *atlas);
   CachedText c{text, atlas.get(), std::make_unique<GlMesh>(false)};
   std::vector<Vertex> v(mesh.positions.size());

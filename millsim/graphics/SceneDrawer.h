@@ -86,8 +86,8 @@ public:
   // volumes or shapes than this drawer.
   bool adoptCuts(const SceneView& fresh);
   // The scene changed while running (an event moved a Transform, chose
-  // another Switch child, changed a Material or a ClipPlane): takes `fresh`'s
-  // shapes, background and cut planes (as adoptCuts). Volumes stay where they
+  // another Switch child, changed a Material, a light or a ClipPlane): takes
+  // `fresh`'s shapes, background, lights and cut planes (as adoptCuts). Volumes stay where they
   // were meshed (placement is fixed for a run). False (and nothing changed)
   // if `fresh` has another number of volumes.
   bool adoptView(const SceneView& fresh);
@@ -136,7 +136,8 @@ private:
     std::unique_ptr<GlMesh> gl;
   };
   std::vector<CachedText> texts_;
-  std::map<std::pair<std::string, std::string>, std::unique_ptr<FontAtlas>> fonts_;  // (family, style)
+  // (family, style) → its atlas; null when no font was found (said once).
+  std::map<std::pair<std::string, std::string>, std::unique_ptr<FontAtlas>> fonts_;
   struct CachedTexture {
     unsigned id = 0;  // 0: the file could not be read
     bool grey = false;

@@ -154,10 +154,11 @@ double lengthIn(const glm::dmat4& m, double l) {
   return l * (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
 }
 
-void readLight(SceneView& sv, Node& n, const glm::dmat4& m) {
+void readLight(SceneView& sv, Node& n, const glm::dmat4& m, std::vector<const Node*>& nodes) {
   const auto* base = dynamic_cast<const LightNode*>(&n);
   if (!base || !base->on.get() || int(sv.lights.size()) >= kMaxLights) return;
   DrawLight l;
+  l.global = base->lightsEverything();
   l.colour = base->color.get().rgb * base->intensity.get();
   l.ambient = base->color.get().rgb * base->ambientIntensity.get();
   if (const auto* d = dynamic_cast<const DirectionalLight*>(&n)) {
@@ -180,6 +181,19 @@ void readLight(SceneView& sv, Node& n, const glm::dmat4& m) {
     return;
   }
   sv.lights.push_back(l);
+  nodes.push_back(&n);
+}
+
+// Which of the view's lights light a node at `at`: every global one, and
+// the scoped ones among its or its ancestors' siblings.
+std::uint32_t lightsAt(const SceneView& sv, const std::vector<const Node*>& nodes, const WalkFrame& at) {
+  std::uint32_t mask = 0;
+  for (std::size_t i = 0; i < sv.lights.size(); ++i) {
+    const bool scopedHere = at.scopedLights && std::find(at.scopedLights->begin(), at.scopedLights->end(), nodes[i]) !=
+                                                   at.scopedLights->end();
+    if (sv.lights[i].global || scopedHere) mask |= 1u << i;
+  }
+  return mask;
 }
 
 // The newest event among a node's fields and those of the nodes in its node fields.
@@ -247,6 +261,12 @@ int SceneView::addUserCut(const glm::dvec3& towards) {
 SceneView readSceneView(const Scene& scene, const Node* viewpoint, ShapeMeshCache* meshes) {
   SceneView sv;
   bool haveView = false, haveBackground = false, haveBounds = false, haveNavigation = false;
+  // Lights first: a scoped light lights its siblings before it in the file too.
+  std::vector<const Node*> lightNodes;
+  walkScene(scene, [&](Node& n, const WalkFrame& at) {
+    if (at.shown) readLight(sv, n, at.localToWorld, lightNodes);
+  });
+  std::vector<std::uint32_t> volumeLights;  // of each placed volume, in walk order
   walkScene(scene, [&](Node& n, const WalkFrame& at) {
     const glm::dmat4& m = at.localToWorld;
     if (auto* vp = dynamic_cast<Viewpoint*>(&n)) {
@@ -265,7 +285,8 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint, ShapeMeshCach
       if (!nav->navType.get().empty()) sv.navigation = nav->navType.get().front();
       sv.headlight = nav->headlight.get();
     }
-    if (at.shown) readLight(sv, n, m);
+    if (auto* vo = dynamic_cast<VolumeObject*>(&n); vo && vo->volume())  // as placedVolumes() lists them
+      volumeLights.push_back(lightsAt(sv, lightNodes, at));
     if (auto* bg = dynamic_cast<Background*>(&n); bg && !haveBackground && !bg->skyColor.get().empty()) {
       haveBackground = true;
       sv.background = bg->skyColor.get().front().rgb;
@@ -304,6 +325,7 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint, ShapeMeshCach
         known = false;  // no geometry, or one graphics does not draw
       }
       if (known) {
+        d.lights = lightsAt(sv, lightNodes, at);
         d.texture = textureOf(*shape);
         if (!d.texture.file.empty() && d.kind != DrawShape::Kind::Mesh && d.kind != DrawShape::Kind::Text) {
           d.mesh = texturedPrimitive(d.kind);  // the same solid, with texture coordinates
@@ -319,7 +341,7 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint, ShapeMeshCach
   for (const PlacedVolume& p : placedVolumes(scene)) {
     sv.volumes.push_back(
         {p.node->volume(), p.localToWorld, double(p.node->isoValue.get()), p.clipPlanes, cutsOf(sv, p.clipPlanes),
-         p.node->tissueMap()});
+         p.node->tissueMap(), volumeLights.at(sv.volumes.size())});
     grow(sv, haveBounds, p.localToWorld, p.node->volume()->halfSize());
   }
   if (!haveView && haveBounds) {

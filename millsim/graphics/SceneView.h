@@ -100,6 +100,7 @@ struct DrawShape {
   std::shared_ptr<const TriangleMesh> mesh;  // Kind::Mesh (also a textured primitive)
   std::shared_ptr<const DrawText> text;      // Kind::Text
   DrawTexture texture;
+  std::uint32_t lights = ~0u;  // bit i: SceneView::lights[i] lights it (X3D's light scoping)
 };
 
 // A light in the world frame (X3D's DirectionalLight, PointLight, SpotLight).
@@ -112,6 +113,9 @@ struct DrawLight {
   glm::vec3 attenuation{1.f, 0.f, 0.f};
   double radius = 100.0;          // world units
   float beamWidth = 0.785398f, cutOffAngle = 1.570796f;
+  // False for a light with global FALSE: it lights only the nodes whose
+  // DrawShape/DrawVolume::lights has its bit (its siblings' subtrees).
+  bool global = true;
 };
 
 struct DrawVolume {
@@ -121,6 +125,7 @@ struct DrawVolume {
   ClipPlanes clipPlanes;
   std::vector<int> cuts;
   const TissueMap* tissues = nullptr;  // colours the surface by tissue when the volume has them
+  std::uint32_t lights = ~0u;          // as DrawShape::lights
 };
 
 // A Viewpoint to cycle through (Page Up / Page Down in the window).

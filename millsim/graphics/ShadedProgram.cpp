@@ -59,6 +59,7 @@ uniform vec3 uFill;
 uniform int uHeadOn;
 uniform vec3 uAmbientLight;
 uniform int uLightCount;
+uniform int uLightMask;
 uniform vec4 uLightPos[8];
 uniform vec3 uLightColour[8];
 uniform vec4 uLightAtt[8];
@@ -96,6 +97,7 @@ void main() {
     c += base * (0.70 * head + 0.40 * fill) + uSpecular * (sHead + 0.5 * sFill);
   }
   for (int i = 0; i < uLightCount; ++i) {
+    if ((uLightMask & (1 << i)) == 0) continue;  // a scoped light that does not reach this object
     vec3 l = uLightPos[i].xyz;
     float weight = 1.0;
     if (uLightPos[i].w != 0.0) {
@@ -161,6 +163,7 @@ ShadedProgram::ShadedProgram() {
   uHeadOn_ = u("uHeadOn"), uAmbientLight_ = u("uAmbientLight"), uLightCount_ = u("uLightCount");
   uLightPos_ = u("uLightPos"), uLightColour_ = u("uLightColour"), uLightAtt_ = u("uLightAtt");
   uLightSpot_ = u("uLightSpot"), uLightCone_ = u("uLightCone"), uTexture_ = u("uTexture"), uImage_ = u("uImage");
+  uLightMask_ = u("uLightMask");
 }
 
 ShadedProgram::~ShadedProgram() { glDeleteProgram(program_); }
@@ -177,8 +180,10 @@ void ShadedProgram::use(const Camera& camera, const glm::vec3& headlight, const 
   glm::vec4 pos[kMaxLights], att[kMaxLights], spot[kMaxLights];
   glm::vec3 colour[kMaxLights];
   glm::vec2 cone[kMaxLights];
+  globalLights_ = 0;
   for (int i = 0; i < n; ++i) {
     const DrawLight& l = lights[std::size_t(i)];
+    if (l.global) globalLights_ |= 1u << i;
     ambient += l.ambient;
     colour[i] = l.colour;
     const bool directional = l.kind == DrawLight::Kind::Directional;
@@ -222,10 +227,13 @@ void ShadedProgram::setObject(const glm::dmat4& model, const DrawMaterial& m, co
   glUniform1i(uClipCount_, n);
   if (n > 0) glUniform4fv(uClip_, n, glm::value_ptr(planes[0]));
   glUniform1i(uTexture_, 0);  // setTexture() after this call turns a texture on
+  glUniform1i(uLightMask_, int(globalLights_));  // setLights() after this call adds scoped lights
   // Attribute 2 without an array supplies one colour for the whole draw.
   if (colour) glVertexAttrib3fv(2, glm::value_ptr(*colour));
 }
 
 void ShadedProgram::setTexture(TextureMode mode) { glUniform1i(uTexture_, int(mode)); }
+
+void ShadedProgram::setLights(std::uint32_t mask) { glUniform1i(uLightMask_, int(mask)); }
 
 }  // namespace millsim

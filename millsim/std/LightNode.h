@@ -1,7 +1,8 @@
 #pragma once
-// X3DLightNode: what every light has. MillSim lights every Shape and volume
-// with every light that is on (as if `global` were TRUE), together with the
-// headlight that NavigationInfo's `headlight` switches.
+// X3DLightNode: what every light has. MillSim lights Shapes and volumes with
+// every light that is on — one with global FALSE only its siblings and their
+// descendants, as X3D scopes it — together with the headlight that
+// NavigationInfo's `headlight` switches.
 #include "millsim/core/NodeKinds.h"
 
 namespace millsim {
@@ -16,6 +17,9 @@ public:
   SFBool shadows{this, "shadows", Access::InputOutput, false, "Whether it casts shadows. Accepted; not acted on by MillSim."};
   SFFloat shadowIntensity{this, "shadowIntensity", Access::InputOutput, 1.f, "How dark its shadows are. Accepted; not acted on by MillSim.",
                           Range::closed(0, 1)};
+
+  // X3D's `global` (each light type has its own default).
+  virtual bool lightsEverything() const = 0;
 };
 
 }  // namespace millsim

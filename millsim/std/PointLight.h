@@ -16,7 +16,9 @@ public:
                       Range::closed(0, 1e9)};
   SFFloat radius{this, "radius", Access::InitializeOnly, 100.f, "Beyond this distance it lights nothing (m).",
                  Range::closed(0, 1e6).in(quantity::length)};
-  SFBool global{this, "global", Access::InputOutput, true, "Whether it lights the whole scene. MillSim lights the whole scene."};
+  SFBool global{this, "global", Access::InputOutput, true, "Whether it lights the whole scene (true) or only its siblings and their descendants (false)."};
+
+  bool lightsEverything() const override { return global.get(); }
 };
 
 }  // namespace millsim

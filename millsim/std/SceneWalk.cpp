@@ -7,6 +7,7 @@
 
 #include "millsim/core/Scene.h"
 #include "millsim/std/ClipPlane.h"
+#include "millsim/std/LightNode.h"
 #include "millsim/std/Switch.h"
 #include "millsim/std/Transform.h"
 
@@ -16,12 +17,15 @@ namespace {
 
 using Visit = std::function<void(Node&, const WalkFrame&)>;
 
-void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
-          const Visit& visit);
+using Lights = std::vector<const Node*>;
 
-// Every node field of n; a ClipPlane among a field's nodes clips its siblings.
-void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
-                  const Visit& visit) {
+void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, const Lights& lights, bool shown,
+          bool translucent, const Visit& visit);
+
+// Every node field of n; a ClipPlane among a field's nodes clips its
+// siblings, and a light that is not global lights them.
+void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& clips, const Lights& lights, bool shown,
+                  bool translucent, const Visit& visit) {
   for (Field* f : n.fields()) {
     auto* nf = dynamic_cast<NodeFieldBase*>(f);
     if (!nf) continue;
@@ -39,24 +43,29 @@ void walkChildren(Node& n, const glm::dmat4& m, const std::vector<glm::dvec4>& c
         const double len = glm::length(glm::dvec3(p));
         if (len > 0.0 && std::isfinite(len)) scoped.push_back(p / len);
       }
+    Lights scopedLights = lights;
+    for (const auto& child : children)
+      if (auto* l = dynamic_cast<LightNode*>(child.get()); l && !l->lightsEverything() && showsChild(*l))
+        scopedLights.push_back(l);
     // A field the node does not show (a Collision's proxy) is walked, not shown.
     const bool fieldShown = shown && n.showsField(*f);
-    for (const auto& child : children) walk(*child, m, scoped, fieldShown && showsChild(*child), translucent, visit);
+    for (const auto& child : children)
+      walk(*child, m, scoped, scopedLights, fieldShown && showsChild(*child), translucent, visit);
   }
 }
 
-void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, bool shown, bool translucent,
-          const Visit& visit) {
+void walk(Node& n, const glm::dmat4& parent, const std::vector<glm::dvec4>& clips, const Lights& lights, bool shown,
+          bool translucent, const Visit& visit) {
   glm::dmat4 m = parent;
   if (auto* t = dynamic_cast<TransformingNode*>(&n)) m = parent * glm::dmat4(t->localMatrix());
-  visit(n, WalkFrame{m, &clips, shown, translucent});
-  walkChildren(n, m, clips, shown && n.showsDescendants(), translucent || n.showsDescendantsTranslucent(), visit);
+  visit(n, WalkFrame{m, &clips, shown, translucent, &lights});
+  walkChildren(n, m, clips, lights, shown && n.showsDescendants(), translucent || n.showsDescendantsTranslucent(), visit);
 }
 
 }  // namespace
 
 void walkScene(const Scene& scene, const Visit& visit) {
-  walkChildren(*scene.root, glm::dmat4(1.0), {}, true, false, visit);
+  walkChildren(*scene.root, glm::dmat4(1.0), {}, {}, true, false, visit);
 }
 
 }  // namespace millsim

@@ -27,6 +27,9 @@ struct WalkFrame {
   bool shown = true;
   // True under a node whose showsDescendantsTranslucent() is true (a visible assessment region).
   bool translucent = false;
+  // The lights with global FALSE that light this node: those among the
+  // siblings of it or of an ancestor (X3D's scoping; the others light all).
+  const std::vector<const Node*>* scopedLights = nullptr;
 };
 
 void walkScene(const Scene& scene, const std::function<void(Node&, const WalkFrame&)>& visit);

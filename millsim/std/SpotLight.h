@@ -23,7 +23,9 @@ public:
                     Range::openClosed(0, 1.5707963267948966).in(quantity::angle)};
   SFFloat cutOffAngle{this, "cutOffAngle", Access::InputOutput, 1.570796f, "Half-angle beyond which it lights nothing (radians).",
                       Range::openClosed(0, 1.5707963267948966).in(quantity::angle)};
-  SFBool global{this, "global", Access::InputOutput, true, "Whether it lights the whole scene. MillSim lights the whole scene."};
+  SFBool global{this, "global", Access::InputOutput, true, "Whether it lights the whole scene (true) or only its siblings and their descendants (false)."};
+
+  bool lightsEverything() const override { return global.get(); }
 };
 
 }  // namespace millsim

@@ -333,9 +333,13 @@ TEST(SceneDrawer, DrawsTheBurrHeadsShape) {
     const int top = widths[widths.size() / 8], bottom = widths[widths.size() * 7 / 8];  // shank end, cutting end
     std::printf("%s head drawn: %d px wide near the shank end, %d px near the cutting end\n",
                 std::string(burrShapeName(shape)).c_str(), top, bottom);
-    if (shape == BurrShape::Cylinder) EXPECT_NEAR(top, bottom, 2);
-    if (shape == BurrShape::Taper) EXPECT_GT(top, bottom + 10);
-    if (shape == BurrShape::InvertedCone) EXPECT_GT(bottom, top + 10);
+    if (shape == BurrShape::Cylinder) {
+      EXPECT_NEAR(top, bottom, 2);
+    } else if (shape == BurrShape::Taper) {
+      EXPECT_GT(top, bottom + 10);
+    } else if (shape == BurrShape::InvertedCone) {
+      EXPECT_GT(bottom, top + 10);
+    }
   }
 }
 
@@ -577,4 +581,28 @@ TEST(SceneRenderer, TheRootIsShadedSmoothly) {
         sum += std::abs(brightness(x, y + 1) - 2.0 * brightness(x, y) + brightness(x, y - 1)), ++n;
   ASSERT_GT(n, 500) << "the root is in the picture";
   EXPECT_LT(sum / n, 3.5) << "terraces on the root: mean |second difference| of brightness " << sum / n;
+}
+
+// X3D's scoping: a DirectionalLight that is not global lights its siblings
+// and their descendants only (wherever it stands among them); a global one
+// lights everything.
+TEST(SceneRenderer, ADirectionalLightLightsOnlyItsSiblings) {
+  ScratchDir dir;
+  auto shot = [&](const std::string& global) {
+    return drawScene(dir, std::string(kCamera) + R"(<NavigationInfo headlight="false"/>
+      <Transform translation="-0.6 0 0">
+        <Shape><Appearance><Material diffuseColor="1 1 1" ambientIntensity="0"/></Appearance><Box size="0.8 0.8 0.8"/></Shape>
+        <DirectionalLight direction="0 0 -1" global=")" + global + R"("/>
+      </Transform>
+      <Transform translation="0.6 0 0">
+        <Shape><Appearance><Material diffuseColor="1 1 1" ambientIntensity="0"/></Appearance><Box size="0.8 0.8 0.8"/></Shape>
+      </Transform>)",
+                     64);
+  };
+  const Image scoped = shot("false");
+  EXPECT_GT(scoped.at(20, 32).r, 150) << "its sibling (before it in the file) is lit";
+  EXPECT_LT(scoped.at(44, 32).r, 10) << "the other Transform's box is not";
+  const Image global = shot("true");
+  EXPECT_GT(global.at(20, 32).r, 150);
+  EXPECT_GT(global.at(44, 32).r, 150) << "global TRUE lights everything";
 }

@@ -39,7 +39,7 @@ template <class T> T& def(const LoadResult& r, const char* name) {
 std::map<std::string, WalkFrame> frames(const Scene& s) {
   std::map<std::string, WalkFrame> out;
   walkScene(s, [&](Node& n, const WalkFrame& at) {
-    if (!n.defName().empty()) out[n.defName()] = WalkFrame{at.localToWorld, nullptr, at.shown, at.translucent};
+    if (!n.defName().empty()) out[n.defName()] = WalkFrame{at.localToWorld, nullptr, at.shown, at.translucent, nullptr};
   });
   return out;
 }
