@@ -266,6 +266,11 @@ SceneView readSceneView(const Scene& scene, const Node* viewpoint, ShapeMeshCach
   walkScene(scene, [&](Node& n, const WalkFrame& at) {
     if (at.shown) readLight(sv, n, at.localToWorld, lightNodes);
   });
+  // A scoped light among the scene's top-level nodes lights the whole scene,
+  // the tool too (it belongs to the top-level device).
+  for (std::size_t i = 0; i < lightNodes.size(); ++i)
+    for (const auto& top : scene.root->children.get())
+      if (top.get() == lightNodes[i]) sv.lights[i].global = true;
   std::vector<std::uint32_t> volumeLights;  // of each placed volume, in walk order
   walkScene(scene, [&](Node& n, const WalkFrame& at) {
     const glm::dmat4& m = at.localToWorld;
