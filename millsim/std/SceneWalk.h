@@ -3,7 +3,7 @@
 // root, depth first in document order (into every node field, Inline contents
 // included; a USEd node once per use), with its accumulated Transform (or
 // MatrixTransform) and the
-// ClipPlanes in scope. The haptic scene and the graphics scene view both walk
+// ClipPlanes and lights in scope. The haptic scene and the graphics scene view both walk
 // with it, so they see the same volumes in the same order.
 #include <functional>
 #include <vector>
