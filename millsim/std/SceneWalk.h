@@ -2,9 +2,9 @@
 // The one walk over a scene that knows where things are: every node under the
 // root, depth first in document order (into every node field, Inline contents
 // included; a USEd node once per use), with its accumulated Transform (or
-// MatrixTransform) and the
-// ClipPlanes and lights in scope. The haptic scene and the graphics scene view both walk
-// with it, so they see the same volumes in the same order.
+// MatrixTransform) and the ClipPlanes and lights in scope. The haptic scene
+// and the graphics scene view both walk with it, so they see the same
+// volumes in the same order.
 #include <functional>
 #include <vector>
 
