@@ -153,7 +153,7 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
     program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
     program_->setLights(scene_.volumes[i].lights);
-    meshes_[i]->draw();
+    meshes_[i]->draw(levelOfDetail(i, height));
   }
   std::vector<const DrawShape*> seeThrough;
   for (const DrawShape& s : scene_.shapes)
@@ -183,6 +183,17 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
   for (int i = 0; i < kMaxClipPlanes; ++i) glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
   glBindVertexArray(0);
   dropUnused();
+}
+
+int SceneDrawer::levelOfDetail(std::size_t i, int height) const {
+  // How many pixels one voxel covers at the volume's centre: below about 1.5
+  // its triangles (about two per surface voxel) are smaller than a pixel.
+  const glm::dmat4& m = scene_.volumes[i].localToWorld;
+  const glm::dvec3 centre(m[3]);
+  const double distance = glm::length(centre - camera_.eye());
+  const double scale = glm::length(glm::dvec3(m[0]));
+  const double pixelsPerMetre = 0.5 * double(height) * camera_.projection[1][1] / std::max(distance, 1e-9);
+  return meshes_[i]->voxelSize() * scale * pixelsPerMetre < kCoarseBelowPixels ? 1 : 0;
 }
 
 void SceneDrawer::drawShape(const DrawShape& s) {

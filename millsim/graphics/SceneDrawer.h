@@ -106,6 +106,10 @@ private:
   VolumeMesh& mesh(std::size_t index);
   void drawTool(const ToolView& t);
   void drawShape(const DrawShape& s);
+  // VolumeMesh's level of detail for volume i in an image `height` pixels high.
+  int levelOfDetail(std::size_t i, int height) const;
+  // Where a voxel covers fewer pixels than this, the 2×2×2-averaged mesh is drawn.
+  static constexpr double kCoarseBelowPixels = 1.5;
   // The GPU copy of a mesh shape or a Text's glyph quads, made on first use.
   GlMesh& meshFor(const std::shared_ptr<const TriangleMesh>& mesh);
   GlMesh* textFor(const DrawText& text, FontAtlas*& font);

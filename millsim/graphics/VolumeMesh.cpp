@@ -18,25 +18,76 @@ glm::vec3 densityColour(float d, float iso) {
 }
 
 VolumeMesh::VolumeMesh(const VoxelVolume& voxels, float isoValue, const TissueMap* tissues)
-    : voxels_(voxels), tissues_(tissues), mesher_(voxels, isoValue) {}
-
-void VolumeMesh::build() {
-  mesher_.buildAll();
-  gpu_.clear();
-  for (const auto& [key, chunk] : mesher_.chunks()) upload(key, chunk);
+    : voxels_(voxels), tissues_(tissues), iso_(isoValue) {
+  levels_[0].mesher = std::make_unique<IsoSurfaceMesher>(voxels, isoValue);
+  const glm::ivec3 fine = voxels.dims(), coarse = (fine + 1) / 2;
+  levels_[1].own = std::make_unique<VoxelVolume>(VoxelVolume::Grid::create(voxels.airValue()), coarse,
+                                                 2.0 * voxels.voxelSize(), voxels.airValue());
+  levels_[1].mesher = std::make_unique<IsoSurfaceMesher>(*levels_[1].own, isoValue);
+  // Coarse voxel i averages fine voxels 2i and 2i + 1, centred at fine index 2i + ½.
+  coarseOffset_ = (glm::dvec3(coarse) - 0.5 * glm::dvec3(fine)) * voxels.voxelSize();
 }
 
-void VolumeMesh::update(const std::vector<BlockOrigin>& blocks) {
-  for (const auto& key : mesher_.update(blocks)) {
-    if (const MeshChunk* c = mesher_.chunk(key))
-      upload(key, *c);
-    else
-      gpu_.erase(key);  // the chunk no longer holds any surface
+double VolumeMesh::voxelSize() const {
+  const glm::dvec3 h = voxels_.voxelSize();
+  return std::min({h.x, h.y, h.z});
+}
+
+void VolumeMesh::average(glm::ivec3 from, glm::ivec3 to) {
+  const glm::ivec3 fine = voxels_.dims(), coarse = levels_[1].own->dims();
+  from = glm::max(from, glm::ivec3(0));
+  to = glm::min(to, coarse - 1);
+  auto in = voxels_.grid().getConstAccessor();
+  auto out = levels_[1].own->grid().getAccessor();
+  const float air = voxels_.airValue();
+  for (int k = from.z; k <= to.z; ++k)
+    for (int j = from.y; j <= to.y; ++j)
+      for (int i = from.x; i <= to.x; ++i) {
+        float sum = 0.f;
+        for (int c = 0; c < 8; ++c) {
+          const glm::ivec3 f = glm::min(2 * glm::ivec3(i, j, k) + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1), fine - 1);
+          sum += in.getValue(openvdb::Coord(f.x, f.y, f.z));
+        }
+        const float v = 0.125f * sum;
+        if (v != air)
+          out.setValue(openvdb::Coord(i, j, k), v);
+        else
+          out.setValueOff(openvdb::Coord(i, j, k), air);
+      }
+}
+
+void VolumeMesh::build() {
+  average(glm::ivec3(0), levels_[1].own->dims() - 1);
+  for (int l = 0; l < 2; ++l) {
+    Level& level = levels_[l];
+    level.mesher->buildAll();
+    level.gpu.clear();
+    for (const auto& [key, chunk] : level.mesher->chunks()) upload(level, key, chunk, l ? coarseOffset_ : glm::dvec3(0.0));
   }
 }
 
-void VolumeMesh::draw() const {
-  for (const auto& [key, mesh] : gpu_) mesh.draw();
+void VolumeMesh::update(const std::vector<BlockOrigin>& blocks) {
+  if (blocks.empty()) return;
+  // Level 1: re-average what the changed blocks cover, and re-mesh its blocks there.
+  std::vector<BlockOrigin> coarseBlocks;
+  for (const BlockOrigin& o : blocks) {
+    average(o / 2, o / 2 + glm::ivec3(DirtyBlocks::kSize / 2 - 1));
+    const BlockOrigin c = (o / 2) / DirtyBlocks::kSize * DirtyBlocks::kSize;
+    if (std::find(coarseBlocks.begin(), coarseBlocks.end(), c) == coarseBlocks.end()) coarseBlocks.push_back(c);
+  }
+  for (int l = 0; l < 2; ++l) {
+    Level& level = levels_[l];
+    for (const auto& key : level.mesher->update(l ? coarseBlocks : blocks)) {
+      if (const MeshChunk* c = level.mesher->chunk(key))
+        upload(level, key, *c, l ? coarseOffset_ : glm::dvec3(0.0));
+      else
+        level.gpu.erase(key);  // the chunk no longer holds any surface
+    }
+  }
+}
+
+void VolumeMesh::draw(int level) const {
+  for (const auto& [key, mesh] : levels_[level == 0 ? 0 : 1].gpu) mesh.draw();
 }
 
 glm::vec3 VolumeMesh::colourAt(const VolumeSampler& sampler, const glm::dvec3& index, float iso) const {
@@ -64,20 +115,21 @@ glm::vec3 VolumeMesh::colourAt(const VolumeSampler& sampler, const glm::dvec3& i
   return densityColour(sampler.density(index), iso);
 }
 
-void VolumeMesh::upload(const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk) {
+void VolumeMesh::upload(Level& level, const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk,
+                        const glm::dvec3& shift) {
   // The density is read two voxels below the surface (on the surface itself
   // every sample equals the iso-value); tissue labels half a voxel below it,
   // where the outermost layer is.
   const VolumeSampler sampler(voxels_);
-  const double voxel = std::min({voxels_.voxelSize().x, voxels_.voxelSize().y, voxels_.voxelSize().z});
+  const double voxel = voxelSize();
   const double depth = (tissues_ ? 0.5 : 2.0) * voxel;
-  const float iso = mesher_.isoValue();
   scratch_.resize(chunk.positions.size());
   for (std::size_t i = 0; i < chunk.positions.size(); ++i) {
-    const glm::dvec3 inside = glm::dvec3(chunk.positions[i]) - depth * glm::dvec3(chunk.normals[i]);
-    scratch_[i] = {chunk.positions[i], chunk.normals[i], colourAt(sampler, voxels_.localToIndex(inside), iso)};
+    const glm::dvec3 at = glm::dvec3(chunk.positions[i]) + shift;  // level 0's local frame
+    const glm::dvec3 inside = at - depth * glm::dvec3(chunk.normals[i]);
+    scratch_[i] = {glm::vec3(at), chunk.normals[i], colourAt(sampler, voxels_.localToIndex(inside), iso_)};
   }
-  gpu_[key].upload(scratch_, chunk.indices);
+  level.gpu[key].upload(scratch_, chunk.indices);
   ++uploads_;
 }
 

@@ -75,12 +75,17 @@ const char* kSmallTooth = R"(
   <Viewpoint position="0 0.03 0" orientation="1 0 0 -1.5707963" fieldOfView="0.5"/>
   <VolumeObject url='"phantom:tooth?size=128,128,88"' isoValue="700"/>)";
 
-TEST(SceneRenderer, IncrementalUpdateDrawsWhatAFullRebuildDraws) {
+// At 128 pixels a voxel of the small tooth covers more than 1.5 pixels and
+// the every-voxel mesh is drawn; at 48 less, and the 2×2×2-averaged one is
+// (VolumeMesh's level 1), which milling must keep as current.
+class IncrementalUpdate : public ::testing::TestWithParam<int> {};
+
+TEST_P(IncrementalUpdate, DrawsWhatAFullRebuildDraws) {
   ScratchDir dir;
   LoadResult r = loadSceneFile(dir.write("t.x3d", x3d(kSmallTooth)), builtinRegistry());
   ASSERT_TRUE(r.ok()) << r.report();
-  auto incremental = createSceneRenderer(*r.scene, sized(128));
-  auto full = createSceneRenderer(*r.scene, sized(128));
+  auto incremental = createSceneRenderer(*r.scene, sized(GetParam()));
+  auto full = createSceneRenderer(*r.scene, sized(GetParam()));
   const RendererStats start = incremental->stats();
   ASSERT_GT(start.triangles, 1000u);
 
@@ -101,6 +106,8 @@ TEST(SceneRenderer, IncrementalUpdateDrawsWhatAFullRebuildDraws) {
   full->render(std::nullopt);
   EXPECT_EQ(incremental->readPixels().rgba, full->readPixels().rgba);
 }
+
+INSTANTIATE_TEST_SUITE_P(SceneRenderer, IncrementalUpdate, ::testing::Values(128, 48));
 
 TEST(SceneRenderer, ClipPlaneCutsItsSiblingsOnly) {
   // Two boxes side by side; the ClipPlane inside the left Transform keeps y <= 0
