@@ -188,6 +188,7 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
 int SceneDrawer::levelOfDetail(std::size_t i, int height) const {
   // How many pixels one voxel covers at the volume's centre: below about 1.5
   // its triangles (about two per surface voxel) are smaller than a pixel.
+  if (!levelOfDetail_) return 0;
   const glm::dmat4& m = scene_.volumes[i].localToWorld;
   const glm::dvec3 centre(m[3]);
   const double distance = glm::length(centre - camera_.eye());

@@ -91,6 +91,8 @@ public:
   // were meshed (placement is fixed for a run). False (and nothing changed)
   // if `fresh` has another number of volumes.
   bool adoptView(const SceneView& fresh);
+  // False: volumes are always drawn from their every-voxel mesh.
+  void setLevelOfDetail(bool on) { levelOfDetail_ = on; }
   // SceneView::addUserCut: the user's own plane, facing `towards`.
   int addUserCut(const glm::dvec3& towards) { return scene_.addUserCut(towards); }
 
@@ -129,6 +131,7 @@ private:
   std::unique_ptr<GlMesh> head_;
   glm::vec2 headRadii_{-1.f};
   std::vector<std::unique_ptr<VolumeMesh>> meshes_;
+  bool levelOfDetail_ = true;
   struct CachedMesh {
     std::shared_ptr<const TriangleMesh> source;  // keeps the key alive
     std::unique_ptr<GlMesh> gl;

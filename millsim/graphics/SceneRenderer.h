@@ -49,6 +49,9 @@ struct RendererOptions {
   // Voxels to mesh in place of each scene VolumeObject's own, in VoxelScene's
   // order (e.g. VolumeReplica volumes in a live run). Empty: the objects' own.
   std::vector<const VoxelVolume*> voxels;
+  // Draw a volume from its 2×2×2-averaged mesh where a voxel covers under 1.5
+  // pixels (SceneDrawer). False: always every voxel (to compare the two).
+  bool levelOfDetail = true;
 };
 
 using RendererStats = DrawStats;
