@@ -5,7 +5,6 @@
 
 #include <glm/common.hpp>
 
-#include "millsim/std/KeyFrames.h"
 
 namespace millsim {
 
@@ -57,12 +56,6 @@ Color ColorInterpolator::mixHsv(const Color& a, const Color& b, float t) {
   return Color{toRgb({h, p.y + t * (q.y - p.y), p.z + t * (q.z - p.z)})};
 }
 
-bool ColorInterpolator::processEvents() {
-  if (!takeEvent(set_fraction, seen_)) return false;
-  const auto v = interpolate(key.get(), keyValue.get(), set_fraction.get(), &ColorInterpolator::mixHsv);
-  if (!v) return false;
-  value_changed.set(*v);
-  return true;
-}
+bool ColorInterpolator::processEvents() { return sendInterpolated(keyValue, value_changed, &ColorInterpolator::mixHsv); }
 
 }  // namespace millsim

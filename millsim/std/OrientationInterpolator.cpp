@@ -5,7 +5,6 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "millsim/std/KeyFrames.h"
 
 namespace millsim {
 
@@ -41,12 +40,6 @@ Rotation slerp(const Rotation& a, const Rotation& b, float t) {
 
 }  // namespace
 
-bool OrientationInterpolator::processEvents() {
-  if (!takeEvent(set_fraction, seen_)) return false;
-  const auto v = interpolate(key.get(), keyValue.get(), set_fraction.get(), slerp);
-  if (!v) return false;
-  value_changed.set(*v);
-  return true;
-}
+bool OrientationInterpolator::processEvents() { return sendInterpolated(keyValue, value_changed, slerp); }
 
 }  // namespace millsim

@@ -1,7 +1,5 @@
 #include "millsim/std/PositionInterpolator.h"
 
-#include "millsim/std/KeyFrames.h"
-
 namespace millsim {
 
 const NodeType& PositionInterpolator::type() {
@@ -12,12 +10,7 @@ const NodeType& PositionInterpolator::type() {
 }
 
 bool PositionInterpolator::processEvents() {
-  if (!takeEvent(set_fraction, seen_)) return false;
-  const auto v = interpolate(key.get(), keyValue.get(), set_fraction.get(),
-                             [](const auto& a, const auto& b, float t) { return a + t * (b - a); });
-  if (!v) return false;
-  value_changed.set(*v);
-  return true;
+  return sendInterpolated(keyValue, value_changed, [](const auto& a, const auto& b, float t) { return a + t * (b - a); });
 }
 
 }  // namespace millsim
