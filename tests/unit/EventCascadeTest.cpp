@@ -28,20 +28,8 @@ using namespace millsim::test;
 
 namespace {
 
-std::string scene(const std::string& body) {
-  return R"(<?xml version="1.0" encoding="UTF-8"?>
-<X3D profile="Immersive" version="4.0"><Scene>)" +
-         body + "</Scene></X3D>";
-}
-
-template <class T> T& def(const LoadResult& r, const char* name) {
-  auto* n = dynamic_cast<T*>(r.scene->def(name).get());
-  if (!n) throw std::runtime_error(std::string("no ") + name);
-  return *n;
-}
-
 std::string mover(bool loop) {
-  return scene(R"(
+  return x3dScene(R"(
     <Transform DEF="Mover"><Shape><Sphere radius="0.01"/></Shape></Transform>
     <TimeSensor DEF="Clock" cycleInterval="2" loop=")" + std::string(loop ? "true" : "false") + R"("/>
     <PositionInterpolator DEF="Path" key="0 0.5 1" keyValue="0 0 0, 1 0 0, 1 2 0"/>
@@ -59,8 +47,8 @@ void expectAt(const Transform& t, glm::vec3 v, const char* when) {
 TEST(EventCascade, TimeSensorMovesATransformOnceThroughItsPath) {
   LoadResult r = load(mover(false));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& t = def<Transform>(r, "Mover");
-  auto& clock = def<TimeSensor>(r, "Clock");
+  auto& t = defNode<Transform>(r, "Mover");
+  auto& clock = defNode<TimeSensor>(r, "Clock");
   EventClock events(*r.scene);
   events.advanceTo(0.5);  // fraction 0.25: halfway to the second key
   expectAt(t, {0.5f, 0.f, 0.f}, "t = 0.5 s");
@@ -77,8 +65,8 @@ TEST(EventCascade, TimeSensorMovesATransformOnceThroughItsPath) {
 TEST(EventCascade, LoopingTimeSensorStartsTheCycleAgain) {
   LoadResult r = load(mover(true));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& t = def<Transform>(r, "Mover");
-  auto& clock = def<TimeSensor>(r, "Clock");
+  auto& t = defNode<Transform>(r, "Mover");
+  auto& clock = defNode<TimeSensor>(r, "Clock");
   EventClock events(*r.scene);
   events.advanceTo(1.5);
   expectAt(t, {1.f, 1.f, 0.f}, "t = 1.5 s");
@@ -92,10 +80,10 @@ TEST(EventCascade, LoopingTimeSensorStartsTheCycleAgain) {
 }
 
 TEST(EventCascade, PausedTimeDoesNotCountAndStopTimeEnds) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <TimeSensor DEF="Clock" cycleInterval="10" pauseTime="1" resumeTime="3" stopTime="6"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& clock = def<TimeSensor>(r, "Clock");
+  auto& clock = defNode<TimeSensor>(r, "Clock");
   EventClock events(*r.scene);
   events.advanceTo(2.0);
   EXPECT_TRUE(clock.isPaused.get());
@@ -109,7 +97,7 @@ TEST(EventCascade, PausedTimeDoesNotCountAndStopTimeEnds) {
 }
 
 TEST(EventCascade, OrientationInterpolatorTurnsATransformAlongTheShorterArc) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <Transform DEF="Turner"><Shape><Sphere radius="0.01"/></Shape></Transform>
     <TimeSensor DEF="Clock" cycleInterval="1"/>
     <OrientationInterpolator DEF="Half" key="0 1" keyValue="0 1 0 0, 0 1 0 3"/>
@@ -118,14 +106,14 @@ TEST(EventCascade, OrientationInterpolatorTurnsATransformAlongTheShorterArc) {
     <ROUTE fromNode="Clock" fromField="fraction_changed" toNode="Short" toField="set_fraction"/>
     <ROUTE fromNode="Half" fromField="value_changed" toNode="Turner" toField="set_rotation"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& t = def<Transform>(r, "Turner");
+  auto& t = defNode<Transform>(r, "Turner");
   EventClock events(*r.scene);
   events.advanceTo(0.5);
   const glm::dquat q(t.rotation.get().quat());
   const glm::dquat want = glm::angleAxis(1.5, glm::dvec3(0, 1, 0));
   EXPECT_NEAR(std::abs(glm::dot(q, want)), 1.0, 1e-6) << "1.5 rad about +Y halfway";
   // 0.1 rad and 6.1 rad (= -0.183 rad) are 0.283 rad apart the short way: halfway is -0.0416 rad, not π.
-  const auto& s = def<OrientationInterpolator>(r, "Short");
+  const auto& s = defNode<OrientationInterpolator>(r, "Short");
   const glm::dquat qs(s.value_changed.get().quat());
   const glm::dquat wantShort = glm::angleAxis((0.1 + (6.1 - 2 * std::numbers::pi)) / 2, glm::dvec3(0, 1, 0));
   EXPECT_NEAR(std::abs(glm::dot(qs, wantShort)), 1.0, 1e-6);
@@ -157,10 +145,10 @@ const char* kToggle = R"(
 KeyEvent key(bool press, std::string c) { return KeyEvent{press, std::move(c), 0, KeyEvent::Modifier::None}; }
 
 TEST(EventCascade, KeySensorTogglesASwitchThroughTypeCorrectRoutes) {
-  LoadResult r = load(scene(kToggle));
+  LoadResult r = load(x3dScene(kToggle));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& sw = def<Switch>(r, "Marker");
-  auto& keys = def<KeySensor>(r, "Keys");
+  auto& sw = defNode<Switch>(r, "Marker");
+  auto& keys = defNode<KeySensor>(r, "Keys");
   EventClock events(*r.scene);
   events.tick(0.0);
   EXPECT_EQ(sw.whichChoice.get(), 0) << "no key yet: as written";
@@ -191,10 +179,10 @@ TEST(EventCascade, KeySensorTogglesASwitchThroughTypeCorrectRoutes) {
 }
 
 TEST(EventCascade, ActionAndModifierKeysAndDisabledSensors) {
-  LoadResult r = load(scene(R"(<KeySensor DEF="Keys"/><KeySensor DEF="Off" enabled="false"/>)"));
+  LoadResult r = load(x3dScene(R"(<KeySensor DEF="Keys"/><KeySensor DEF="Off" enabled="false"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& keys = def<KeySensor>(r, "Keys");
-  auto& off = def<KeySensor>(r, "Off");
+  auto& keys = defNode<KeySensor>(r, "Keys");
+  auto& off = defNode<KeySensor>(r, "Off");
   EventClock events(*r.scene);
   events.key(KeyEvent{true, "", 17, KeyEvent::Modifier::None});  // Up
   events.key(KeyEvent{true, "", 0, KeyEvent::Modifier::Shift});
@@ -210,7 +198,7 @@ TEST(EventCascade, ActionAndModifierKeysAndDisabledSensors) {
 // Two interpolators feeding each other: A sends f, B sends 1 - f back to A,
 // which has already sent at this timestamp, so the cascade ends and A keeps f.
 TEST(EventCascade, ARouteCycleEndsWithEachNodeSendingOncePerTimestamp) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <TimeSensor DEF="Clock" cycleInterval="1" loop="true"/>
     <ScalarInterpolator DEF="A" key="0 1" keyValue="0 1"/>
     <ScalarInterpolator DEF="B" key="0 1" keyValue="1 0"/>
@@ -221,8 +209,8 @@ TEST(EventCascade, ARouteCycleEndsWithEachNodeSendingOncePerTimestamp) {
     <ROUTE fromNode="T1" fromField="translation_changed" toNode="T2" toField="set_translation"/>
     <ROUTE fromNode="T2" fromField="translation_changed" toNode="T1" toField="set_translation"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& a = def<ScalarInterpolator>(r, "A");
-  auto& b = def<ScalarInterpolator>(r, "B");
+  auto& a = defNode<ScalarInterpolator>(r, "A");
+  auto& b = defNode<ScalarInterpolator>(r, "B");
   EventClock events(*r.scene);
   EXPECT_EQ(events.tick(0.25), 3u) << "the TimeSensor, A and B, once each";
   EXPECT_FLOAT_EQ(a.value_changed.get(), 0.25f);
@@ -232,8 +220,8 @@ TEST(EventCascade, ARouteCycleEndsWithEachNodeSendingOncePerTimestamp) {
   EXPECT_FLOAT_EQ(a.value_changed.get(), 0.5f);
 
   // Plain fields in a cycle: a set reaches the other side and stops there.
-  auto& t1 = def<Transform>(r, "T1");
-  auto& t2 = def<Transform>(r, "T2");
+  auto& t1 = defNode<Transform>(r, "T1");
+  auto& t2 = defNode<Transform>(r, "T2");
   t1.translation.set({1.f, 2.f, 3.f});
   EXPECT_EQ(t2.translation.get(), glm::vec3(1.f, 2.f, 3.f));
   EXPECT_EQ(t1.translation.get(), glm::vec3(1.f, 2.f, 3.f));
@@ -266,7 +254,7 @@ void expectColor(const Color& c, glm::vec3 want, const char* when) {
 // way, through magenta (300°), not through green; black to green keeps green's
 // hue and mixes saturation and value. The values below are worked by hand.
 TEST(EventCascade, ColorInterpolatorMixesInHsvTheShorterWayRound) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <Shape><Appearance><Material DEF="Mat"/></Appearance><Sphere radius="0.01"/></Shape>
     <TimeSensor DEF="Clock" cycleInterval="4"/>
     <ColorInterpolator DEF="RedBlue" key="0 1" keyValue="1 0 0, 0 0 1"/>
@@ -275,8 +263,8 @@ TEST(EventCascade, ColorInterpolatorMixesInHsvTheShorterWayRound) {
     <ROUTE fromNode="Clock" fromField="fraction_changed" toNode="BlackGreen" toField="set_fraction"/>
     <ROUTE fromNode="RedBlue" fromField="value_changed" toNode="Mat" toField="set_diffuseColor"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& mat = def<Material>(r, "Mat");
-  const auto& blackGreen = def<ColorInterpolator>(r, "BlackGreen");
+  auto& mat = defNode<Material>(r, "Mat");
+  const auto& blackGreen = defNode<ColorInterpolator>(r, "BlackGreen");
   EventClock events(*r.scene);
   events.advanceTo(1.0);  // fraction 0.25: hue 0° - 60° = 330°, s = v = 1
   expectColor(mat.diffuseColor.get(), {1.f, 0.f, 0.5f}, "t = 1 s");
@@ -290,17 +278,17 @@ TEST(EventCascade, ColorInterpolatorMixesInHsvTheShorterWayRound) {
 }
 
 TEST(EventCascade, DrawnFieldsSeeAMatrixTransformsMatrix) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <MatrixTransform DEF="Source"/>
     <MatrixTransform DEF="Drawn"><Shape><Sphere radius="0.01"/></Shape></MatrixTransform>
     <ROUTE fromNode="Source" fromField="matrix_changed" toNode="Drawn" toField="set_matrix"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
   DrawnFields drawn(*r.scene);
   EXPECT_FALSE(drawn.changed());
-  def<MatrixTransform>(r, "Source").matrix.setFromString("1 0 0 0.01  0 1 0 0  0 0 1 0  0 0 0 1");
+  defNode<MatrixTransform>(r, "Source").matrix.setFromString("1 0 0 0.01  0 1 0 0  0 0 1 0  0 0 0 1");
   EXPECT_TRUE(drawn.changed()) << "the routed matrix changed what is drawn";
   drawn.mark();
-  EXPECT_FLOAT_EQ(def<MatrixTransform>(r, "Drawn").matrix.get()[3][0], 0.01f);
+  EXPECT_FLOAT_EQ(defNode<MatrixTransform>(r, "Drawn").matrix.get()[3][0], 0.01f);
 }
 
 }  // namespace

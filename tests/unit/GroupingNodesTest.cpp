@@ -23,18 +23,6 @@ using namespace millsim::test;
 
 namespace {
 
-std::string scene(const std::string& body, const std::string& head = "") {
-  return R"(<?xml version="1.0" encoding="UTF-8"?>
-<X3D profile="Immersive" version="4.0">)" +
-         (head.empty() ? std::string() : "<head>" + head + "</head>") + "<Scene>" + body + "</Scene></X3D>";
-}
-
-template <class T> T& def(const LoadResult& r, const char* name) {
-  auto* n = dynamic_cast<T*>(r.scene->def(name).get());
-  if (!n) throw std::runtime_error(std::string("no ") + name);
-  return *n;
-}
-
 // Each DEF'd node's frame as the walk saw it.
 std::map<std::string, WalkFrame> frames(const Scene& s) {
   std::map<std::string, WalkFrame> out;
@@ -45,7 +33,7 @@ std::map<std::string, WalkFrame> frames(const Scene& s) {
 }
 
 TEST(MatrixTransform, PlacesItsChildrenWhereItsMatrixSays) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <MatrixTransform DEF="M" matrix="1 0 0 0.01  0 1 0 0  0 0 1 0  0 0 0 1">
       <Shape DEF="S"><Sphere radius="0.001"/></Shape>
     </MatrixTransform>)"));
@@ -60,7 +48,7 @@ TEST(MatrixTransform, PlacesItsChildrenWhereItsMatrixSays) {
 }
 
 TEST(MatrixTransform, NestsWithTransformsInOrder) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <Transform rotation="0 0 1 1.5707963">
       <MatrixTransform matrix="2 0 0 0.01  0 2 0 0  0 0 2 0  0 0 0 1">
         <Shape DEF="S"><Sphere radius="0.001"/></Shape>
@@ -74,11 +62,11 @@ TEST(MatrixTransform, NestsWithTransformsInOrder) {
 }
 
 TEST(MatrixTransform, UnitStatementsConvertOnlyTheTranslation) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <MatrixTransform DEF="M" matrix="2 0 0 10  0 1 0 -5  0 0 1 2.5  0 0 0 1"/>)",
                             R"(<unit category="length" name="millimetre" conversionFactor="0.001"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  const glm::mat4& m = def<MatrixTransform>(r, "M").matrix.get();
+  const glm::mat4& m = defNode<MatrixTransform>(r, "M").matrix.get();
   EXPECT_FLOAT_EQ(m[3][0], 0.01f);
   EXPECT_FLOAT_EQ(m[3][1], -0.005f);
   EXPECT_FLOAT_EQ(m[3][2], 0.0025f);
@@ -88,7 +76,7 @@ TEST(MatrixTransform, UnitStatementsConvertOnlyTheTranslation) {
 }
 
 TEST(MatrixTransform, ASingularMatrixIsALoadErrorAtTheAttribute) {
-  LoadResult r = load(scene("\n<MatrixTransform matrix='1 0 0 0  0 0 0 0  0 0 1 0  0 0 0 1'/>"));
+  LoadResult r = load(x3dScene("\n<MatrixTransform matrix='1 0 0 0  0 0 0 0  0 0 1 0  0 0 0 1'/>"));
   ASSERT_FALSE(r.ok());
   const Diagnostic& e = firstError(r);
   EXPECT_NE(e.message.find("singular"), std::string::npos) << r.report();
@@ -98,7 +86,7 @@ TEST(MatrixTransform, ASingularMatrixIsALoadErrorAtTheAttribute) {
 }
 
 TEST(Collision, ShowsItsChildrenButNotItsProxy) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <Collision DEF="C" enabled="false">
       <Transform translation="0.02 0 0"><Shape DEF="Child"><Box size="0.01 0.01 0.01"/></Shape></Transform>
       <Transform containerField="proxy"><Shape DEF="Proxy"><Sphere radius="0.05"/></Shape></Transform>
@@ -109,14 +97,14 @@ TEST(Collision, ShowsItsChildrenButNotItsProxy) {
   EXPECT_TRUE(f.at("Child").shown);
   EXPECT_NEAR((f.at("Child").localToWorld * glm::dvec4(0, 0, 0, 1)).x, 0.02, 1e-9) << "placed as in a Group";
   EXPECT_FALSE(f.at("Proxy").shown) << "the proxy is for collision only";
-  auto& c = def<Collision>(r, "C");
+  auto& c = defNode<Collision>(r, "C");
   EXPECT_FALSE(c.enabled.get());
   EXPECT_EQ(c.children.get().size(), 1u);
   ASSERT_TRUE(c.proxy.get());
 }
 
 TEST(Metadata, LoadsUnderAnyNodeAndInsideASet) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <Transform DEF="T">
       <MetadataString DEF="Author" name="author" value='"Blender" "4.1"' reference="https://blender.org"/>
       <Shape DEF="S">
@@ -133,26 +121,26 @@ TEST(Metadata, LoadsUnderAnyNodeAndInsideASet) {
     </Transform>)"));
   ASSERT_TRUE(r.ok()) << r.report();
   EXPECT_TRUE(r.diagnostics.empty()) << r.report();
-  auto& author = def<MetadataString>(r, "Author");
+  auto& author = defNode<MetadataString>(r, "Author");
   EXPECT_EQ(author.value.get(), (std::vector<std::string>{"Blender", "4.1"}));
   EXPECT_EQ(author.reference.get(), "https://blender.org");
-  EXPECT_EQ(def<Transform>(r, "T").metadata.get().get(), &author);
-  auto& set = def<MetadataSet>(r, "Set");
-  EXPECT_EQ(def<Shape>(r, "S").metadata.get().get(), &set);
+  EXPECT_EQ(defNode<Transform>(r, "T").metadata.get().get(), &author);
+  auto& set = defNode<MetadataSet>(r, "Set");
+  EXPECT_EQ(defNode<Shape>(r, "S").metadata.get().get(), &set);
   ASSERT_EQ(set.value.get().size(), 4u) << "metadata nodes inside a set are its values";
-  EXPECT_EQ(set.value.get()[0].get(), &def<MetadataInteger>(r, "I"));
-  EXPECT_EQ(def<MetadataInteger>(r, "I").value.get(), (std::vector<std::int32_t>{1, 2, 3}));
+  EXPECT_EQ(set.value.get()[0].get(), &defNode<MetadataInteger>(r, "I"));
+  EXPECT_EQ(defNode<MetadataInteger>(r, "I").value.get(), (std::vector<std::int32_t>{1, 2, 3}));
   ASSERT_TRUE(set.metadata.get());
   EXPECT_EQ(set.metadata.get()->typeName(), "MetadataString");
-  EXPECT_EQ(def<Material>(r, "Mat").metadata.get().get(), &def<MetadataFloat>(r, "F"));
+  EXPECT_EQ(defNode<Material>(r, "Mat").metadata.get().get(), &defNode<MetadataFloat>(r, "F"));
 }
 
 TEST(Metadata, OnlyMetadataNodesFitTheMetadataField) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <Group><Shape containerField="metadata"><Sphere/></Shape></Group>)"));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(firstError(r).message.find("X3DMetadataObject"), std::string::npos) << r.report();
-  LoadResult two = load(scene(R"(
+  LoadResult two = load(x3dScene(R"(
     <Group><MetadataString name="a"/><MetadataString name="b"/></Group>)"));
   ASSERT_FALSE(two.ok());
   EXPECT_NE(firstError(two).message.find("already holds"), std::string::npos) << two.report();

@@ -23,18 +23,6 @@ using namespace millsim::test;
 
 namespace {
 
-std::string scene(const std::string& body) {
-  return R"(<?xml version="1.0" encoding="UTF-8"?>
-<X3D profile="Immersive" version="4.0"><Scene>)" +
-         body + "</Scene></X3D>";
-}
-
-template <class T> T& def(const LoadResult& r, const char* name) {
-  auto* n = dynamic_cast<T*>(r.scene->def(name).get());
-  if (!n) throw std::runtime_error(std::string("no ") + name);
-  return *n;
-}
-
 void expectVec(const glm::vec3& a, const glm::vec3& b, const char* what) {
   EXPECT_NEAR(a.x, b.x, 1e-5) << what;
   EXPECT_NEAR(a.y, b.y, 1e-5) << what;
@@ -45,10 +33,10 @@ void expectVec(const glm::vec3& a, const glm::vec3& b, const char* what) {
 const char* kFold = R"(<Coordinate point="0 0 0, 1 0 0, 1 1 0, 0 1 0, 1 0 -1, 1 1 -1"/>)";
 
 TEST(ShapeMesh, AQuadIsTwoTrianglesFacingItsWinding) {
-  LoadResult r = load(scene(R"(<Shape><IndexedFaceSet DEF="F" coordIndex="0 1 2 3 -1">)" + std::string(kFold) +
+  LoadResult r = load(x3dScene(R"(<Shape><IndexedFaceSet DEF="F" coordIndex="0 1 2 3 -1">)" + std::string(kFold) +
                             "</IndexedFaceSet></Shape>"));
   ASSERT_TRUE(r.ok()) << r.report();
-  const TriangleMesh m = meshOf(def<IndexedFaceSet>(r, "F"));
+  const TriangleMesh m = meshOf(defNode<IndexedFaceSet>(r, "F"));
   ASSERT_EQ(m.triangles(), 2u);
   for (const glm::vec3& n : m.normals) expectVec(n, {0, 0, 1}, "counter-clockwise from +Z faces +Z");
   expectVec(m.boundsMin, {0, 0, 0}, "bounds");
@@ -56,20 +44,20 @@ TEST(ShapeMesh, AQuadIsTwoTrianglesFacingItsWinding) {
   // X3D's default texture mapping: s along x, t along y, both over the longest side.
   EXPECT_NEAR(m.texCoords[1].x, 1.f, 1e-6);
 
-  LoadResult cw = load(scene(R"(<Shape><IndexedFaceSet DEF="F" ccw="false" coordIndex="0 1 2 3">)" + std::string(kFold) +
+  LoadResult cw = load(x3dScene(R"(<Shape><IndexedFaceSet DEF="F" ccw="false" coordIndex="0 1 2 3">)" + std::string(kFold) +
                              "</IndexedFaceSet></Shape>"));
   ASSERT_TRUE(cw.ok()) << cw.report();
-  const TriangleMesh c = meshOf(def<IndexedFaceSet>(cw, "F"));
+  const TriangleMesh c = meshOf(defNode<IndexedFaceSet>(cw, "F"));
   ASSERT_EQ(c.triangles(), 2u) << "the last face needs no -1";
   for (const glm::vec3& n : c.normals) expectVec(n, {0, 0, -1}, "ccw FALSE: the front is the other side");
 }
 
 TEST(ShapeMesh, CreaseAngleSmoothsOnlyGentleEdges) {
   auto normalsAtSharedVertex = [](float crease) {
-    LoadResult r = load(scene(R"(<Shape><IndexedFaceSet DEF="F" creaseAngle=")" + std::to_string(crease) +
+    LoadResult r = load(x3dScene(R"(<Shape><IndexedFaceSet DEF="F" creaseAngle=")" + std::to_string(crease) +
                               R"(" coordIndex="0 1 2 3 -1 1 4 5 2 -1">)" + std::string(kFold) + "</IndexedFaceSet></Shape>"));
     EXPECT_TRUE(r.ok()) << r.report();
-    const TriangleMesh m = meshOf(def<IndexedFaceSet>(r, "F"));
+    const TriangleMesh m = meshOf(defNode<IndexedFaceSet>(r, "F"));
     std::vector<glm::vec3> at;  // the normals drawn at vertex (1, 0, 0)
     for (std::size_t i = 0; i < m.positions.size(); ++i)
       if (glm::length(m.positions[i] - glm::vec3(1, 0, 0)) < 1e-6f) at.push_back(m.normals[i]);
@@ -86,11 +74,11 @@ TEST(ShapeMesh, CreaseAngleSmoothsOnlyGentleEdges) {
 }
 
 TEST(ShapeMesh, GivenNormalsAndPerFaceColoursAreUsed) {
-  LoadResult r = load(scene(R"(<Shape><IndexedFaceSet DEF="F" colorPerVertex="false" normalPerVertex="false"
+  LoadResult r = load(x3dScene(R"(<Shape><IndexedFaceSet DEF="F" colorPerVertex="false" normalPerVertex="false"
       coordIndex="0 1 2 3 -1 1 4 5 2 -1" colorIndex="1 0">)" + std::string(kFold) +
                             R"(<Color color="1 0 0, 0 0 1"/><Normal vector="0 0 2, 3 0 0"/></IndexedFaceSet></Shape>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  const TriangleMesh m = meshOf(def<IndexedFaceSet>(r, "F"));
+  const TriangleMesh m = meshOf(defNode<IndexedFaceSet>(r, "F"));
   ASSERT_EQ(m.triangles(), 4u);
   ASSERT_EQ(m.colours.size(), m.positions.size());
   expectVec(m.colours.front(), {0, 0, 1}, "face 0 takes colorIndex[0] = 1");
@@ -100,35 +88,35 @@ TEST(ShapeMesh, GivenNormalsAndPerFaceColoursAreUsed) {
 }
 
 TEST(ShapeMesh, TriangleSetAndConeHaveTheirShape) {
-  LoadResult r = load(scene(R"(<Shape><IndexedTriangleSet DEF="T" index="0 1 2 0 2 3">)" + std::string(kFold) +
+  LoadResult r = load(x3dScene(R"(<Shape><IndexedTriangleSet DEF="T" index="0 1 2 0 2 3">)" + std::string(kFold) +
                             R"(</IndexedTriangleSet></Shape><Shape><Cone DEF="C" bottomRadius="0.5" height="3"/></Shape>
       <Shape><Cone DEF="Base" side="false"/></Shape>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  const TriangleMesh t = meshOf(def<IndexedTriangleSet>(r, "T"));
+  const TriangleMesh t = meshOf(defNode<IndexedTriangleSet>(r, "T"));
   EXPECT_EQ(t.triangles(), 2u);
-  const TriangleMesh c = meshOf(def<Cone>(r, "C"));
+  const TriangleMesh c = meshOf(defNode<Cone>(r, "C"));
   EXPECT_NEAR(c.boundsMin.y, -1.5f, 1e-6);
   EXPECT_NEAR(c.boundsMax.y, 1.5f, 1e-6);
   EXPECT_NEAR(c.boundsMax.x, 0.5f, 1e-3);
-  const TriangleMesh base = meshOf(def<Cone>(r, "Base"));
+  const TriangleMesh base = meshOf(defNode<Cone>(r, "Base"));
   EXPECT_GT(base.triangles(), 0u);
   EXPECT_NEAR(base.boundsMax.y, -1.f, 1e-6) << "side FALSE: only the base, at y = -height/2";
 }
 
 TEST(ShapeMesh, IndexOutOfRangeIsAnErrorAtTheNode) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
 <Shape><IndexedFaceSet coordIndex="0 1 7 -1"><Coordinate point="0 0 0, 1 0 0, 1 1 0"/></IndexedFaceSet></Shape>)"));
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(firstError(r).str(),
             "test.x3d:3:8: error: IndexedFaceSet field 'coordIndex': index 7 at position 2 is out of range: the Coordinate "
             "has 3 entries (expected 0..2, or -1 to end a face)");
-  LoadResult t = load(scene(R"(<Shape><IndexedTriangleSet index="0 1 3"><Coordinate point="0 0 0, 1 0 0, 1 1 0"/></IndexedTriangleSet></Shape>)"));
+  LoadResult t = load(x3dScene(R"(<Shape><IndexedTriangleSet index="0 1 3"><Coordinate point="0 0 0, 1 0 0, 1 1 0"/></IndexedTriangleSet></Shape>)"));
   ASSERT_FALSE(t.ok());
   EXPECT_NE(firstError(t).message.find("index 3 at position 2 is out of range"), std::string::npos) << t.report();
 }
 
 TEST(SceneView, ReadsMeshesTextAndLights) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <NavigationInfo headlight="false"/>
     <DirectionalLight direction="0 -1 0" intensity="0.5" color="1 0 0"/>
     <Transform translation="0 0 2"><PointLight location="0 1 0" on="true"/></Transform>
@@ -155,21 +143,21 @@ TEST(SceneView, ReadsMeshesTextAndLights) {
 // The issue's must-hold: a route from removedVolume into a Text's string
 // updates it (through NumberToText: X3D routes join fields of one type).
 TEST(NumberToText, RemovedVolumeIsShownInAText) {
-  LoadResult r = load(scene(R"(
+  LoadResult r = load(x3dScene(R"(
     <VolumeObject DEF="Tooth" url="phantom:tooth?size=24,24,16"/>
     <NumberToText DEF="Fmt" scale="1e9" decimals="2" prefix="removed " suffix=" mm³"/>
     <Shape><Text DEF="Label" string='"nothing yet"'/></Shape>
     <ROUTE fromNode="Tooth" fromField="removedVolume" toNode="Fmt" toField="set_value"/>
     <ROUTE fromNode="Fmt" fromField="string_changed" toNode="Label" toField="set_string"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  auto& label = def<Text>(r, "Label");
+  auto& label = defNode<Text>(r, "Label");
   EventClock events(*r.scene);
   events.tick(0.0);
   EXPECT_EQ(label.string.get(), std::vector<std::string>{"nothing yet"}) << "no event yet, the written string stays";
-  def<VolumeObject>(r, "Tooth").removedVolume.set(2.5e-9f);
+  defNode<VolumeObject>(r, "Tooth").removedVolume.set(2.5e-9f);
   events.tick(0.02);
   EXPECT_EQ(label.string.get(), std::vector<std::string>{"removed 2.50 mm³"});
-  def<VolumeObject>(r, "Tooth").removedVolume.set(1.234e-8f);
+  defNode<VolumeObject>(r, "Tooth").removedVolume.set(1.234e-8f);
   events.tick(0.04);
   EXPECT_EQ(readSceneView(*r.scene).shapes.at(0).text->lines, std::vector<std::string>{"removed 12.34 mm³"})
       << "what graphics draws follows";
