@@ -1,6 +1,7 @@
 #pragma once
 // An 8-bit RGBA picture, rows from the top (as PNG stores them, not as
 // OpenGL reads them). Header-only.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -18,5 +19,13 @@ struct Image {
   }
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
 };
+
+// Turns `rows` rows of `rowBytes` bytes upside down in place (OpenGL's rows
+// run from the bottom, PNG's and JPEG's from the top).
+inline void flipRows(std::uint8_t* data, std::size_t rowBytes, int rows) {
+  for (int y = 0; y < rows / 2; ++y)
+    std::swap_ranges(data + std::size_t(y) * rowBytes, data + std::size_t(y + 1) * rowBytes,
+                     data + std::size_t(rows - 1 - y) * rowBytes);
+}
 
 }  // namespace millsim

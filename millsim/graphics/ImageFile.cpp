@@ -9,6 +9,7 @@
 #include <png.h>
 
 #include "millsim/graphics/GraphicsError.h"
+#include "millsim/graphics/Image.h"
 
 namespace millsim {
 
@@ -17,16 +18,6 @@ namespace {
 // Larger images are refused rather than allocated: a texture beyond GL's
 // guaranteed size would not draw anyway.
 constexpr int kMaxSide = 8192;
-
-void flipRows(TextureImage& img) {
-  const std::size_t row = std::size_t(img.width) * 4;
-  std::vector<std::uint8_t> tmp(row);
-  for (int y = 0; y < img.height / 2; ++y) {
-    std::uint8_t* a = img.rgba.data() + std::size_t(y) * row;
-    std::uint8_t* b = img.rgba.data() + std::size_t(img.height - 1 - y) * row;
-    std::memcpy(tmp.data(), a, row), std::memcpy(a, b, row), std::memcpy(b, tmp.data(), row);
-  }
-}
 
 void checkSize(const std::string& path, long width, long height) {
   if (width <= 0 || height <= 0 || width > kMaxSide || height > kMaxSide)
@@ -53,7 +44,7 @@ TextureImage readPng(const std::string& path) {
   img.rgba.resize(PNG_IMAGE_SIZE(png));
   if (!png_image_finish_read(&png, nullptr, img.rgba.data(), 0, nullptr))
     throw GraphicsError(path + ": the PNG data is damaged (" + png.message + ")");
-  flipRows(img);
+  flipRows(img.rgba.data(), std::size_t(img.width) * 4, img.height);
   return img;
 }
 

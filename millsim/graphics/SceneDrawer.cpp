@@ -33,15 +33,17 @@ const DrawMaterial kGhost{glm::vec3(0.2f, 0.9f, 0.3f), glm::vec3(0.f), glm::vec3
 const DrawMaterial kMarker{glm::vec3(1.f, 0.05f, 0.05f), glm::vec3(0.3f), glm::vec3(0.25f, 0.f, 0.f), 0.3f, 0.2f};
 const DrawMaterial kTissue{glm::vec3(1.f), glm::vec3(0.22f), glm::vec3(0.f), 0.22f, 0.25f};
 
-void flipRows(std::uint8_t* data, std::size_t rowBytes, int rows) {
-  std::vector<std::uint8_t> tmp(rowBytes);
-  for (int y = 0; y < rows / 2; ++y) {
-    std::uint8_t* a = data + std::size_t(y) * rowBytes;
-    std::uint8_t* b = data + std::size_t(rows - 1 - y) * rowBytes;
-    std::copy(a, a + rowBytes, tmp.data());
-    std::copy(b, b + rowBytes, a);
-    std::copy(tmp.data(), tmp.data() + rowBytes, b);
+// A TriangleMesh (unshared corners) into a GlMesh: per-vertex colours when
+// `colours`, else white for the per-draw colour; texture coordinates if any.
+void upload(GlMesh& gl, const TriangleMesh& mesh, bool colours) {
+  std::vector<Vertex> v(mesh.positions.size());
+  std::vector<std::uint32_t> idx(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    v[i] = {mesh.positions[i], mesh.normals[i], colours ? mesh.colours[i] : glm::vec3(1.f)};
+    idx[i] = std::uint32_t(i);
   }
+  gl.upload(v, idx);
+  if (mesh.texCoords.size() == v.size()) gl.uploadTexCoords(mesh.texCoords);
 }
 
 }  // namespace
@@ -237,14 +239,7 @@ GlMesh& SceneDrawer::meshFor(const std::shared_ptr<const TriangleMesh>& mesh) {
     c.source = mesh;
     const bool colours = mesh->colours.size() == mesh->positions.size();
     c.gl = std::make_unique<GlMesh>(colours);
-    std::vector<Vertex> v(mesh->positions.size());
-    std::vector<std::uint32_t> idx(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      v[i] = {mesh->positions[i], mesh->normals[i], colours ? mesh->colours[i] : glm::vec3(1.f)};
-      idx[i] = std::uint32_t(i);
-    }
-    c.gl->upload(v, idx);
-    if (mesh->texCoords.size() == v.size()) c.gl->uploadTexCoords(mesh->texCoords);
+    upload(*c.gl, *mesh, colours);
   }
   return *c.gl;
 }
@@ -266,11 +261,7 @@ GlMesh* SceneDrawer::textFor(const DrawText& text, FontAtlas*& font) {
   if (!atlas) return nullptr;
   const TriangleMesh mesh = layoutText(text, *atlas);
   CachedText c{text, atlas.get(), std::make_unique<GlMesh>(false)};
-  std::vector<Vertex> v(mesh.positions.size());
-  std::vector<std::uint32_t> idx(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = {mesh.positions[i], mesh.normals[i], glm::vec3(1.f)}, idx[i] = std::uint32_t(i);
-  c.gl->upload(v, idx);
-  c.gl->uploadTexCoords(mesh.texCoords);
+  upload(*c.gl, mesh, false);
   texts_.push_back(std::move(c));
   return font = texts_.back().font, texts_.back().gl.get();
 }

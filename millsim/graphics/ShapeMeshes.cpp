@@ -50,12 +50,6 @@ std::int64_t indexFor(const std::vector<std::int32_t>* explicitIndex, bool perVe
   return has ? (f < explicitIndex->size() ? (*explicitIndex)[f] : -1) : std::int64_t(f);
 }
 
-void finishBounds(TriangleMesh& m) {
-  if (m.positions.empty()) return;
-  m.boundsMin = m.boundsMax = m.positions.front();
-  for (const glm::vec3& p : m.positions) m.boundsMin = glm::min(m.boundsMin, p), m.boundsMax = glm::max(m.boundsMax, p);
-}
-
 TriangleMesh build(const FaceInput& in) {
   TriangleMesh mesh;
   const std::vector<glm::vec3>& pts = *in.points;
@@ -146,7 +140,7 @@ TriangleMesh build(const FaceInput& in) {
       corner(f, in.ccw ? j : j + 1);
       corner(f, in.ccw ? j + 1 : j);
     }
-  finishBounds(mesh);
+  mesh.computeBounds();
   return mesh;
 }
 
@@ -222,7 +216,7 @@ TriangleMesh meshOf(const Cone& cone) {
       push(m, b * r + glm::vec3(0.f, -0.5f * h, 0.f), normal(b), {s1, 0.f});
     }
   if (cone.bottom.get()) disc(m, -0.5f * h, -1.f, r, slices);
-  finishBounds(m);
+  m.computeBounds();
   return m;
 }
 
@@ -240,7 +234,7 @@ TriangleMesh texturedSphere(int slices, int stacks) {
       push(m, a, a, {s0, t0}), push(m, b, b, {s1, t0}), push(m, c, c, {s1, t1});
       push(m, a, a, {s0, t0}), push(m, c, c, {s1, t1}), push(m, d, d, {s0, t1});
     }
-  finishBounds(m);
+  m.computeBounds();
   return m;
 }
 
@@ -255,7 +249,7 @@ TriangleMesh texturedCylinder(int slices) {
   }
   disc(m, 0.5f, 1.f, 1.f, slices);
   disc(m, -0.5f, -1.f, 1.f, slices);
-  finishBounds(m);
+  m.computeBounds();
   return m;
 }
 
@@ -273,7 +267,7 @@ TriangleMesh texturedBox() {
     push(m, p(0, 0), f.normal, {0, 0}), push(m, p(1, 0), f.normal, {1, 0}), push(m, p(1, 1), f.normal, {1, 1});
     push(m, p(0, 0), f.normal, {0, 0}), push(m, p(1, 1), f.normal, {1, 1}), push(m, p(0, 1), f.normal, {0, 1});
   }
-  finishBounds(m);
+  m.computeBounds();
   return m;
 }
 

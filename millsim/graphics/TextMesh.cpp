@@ -64,10 +64,7 @@ TriangleMesh layoutText(const DrawText& text, FontAtlas& font) {
       x += g.advance * size * stretch;
     }
   }
-  if (!mesh.positions.empty()) {
-    mesh.boundsMin = mesh.boundsMax = mesh.positions.front();
-    for (const glm::vec3& p : mesh.positions) mesh.boundsMin = glm::min(mesh.boundsMin, p), mesh.boundsMax = glm::max(mesh.boundsMax, p);
-  }
+  mesh.computeBounds();
   return mesh;
 }
 

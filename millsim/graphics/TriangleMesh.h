@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -20,6 +21,12 @@ struct TriangleMesh {
   glm::vec3 boundsMin{0.f}, boundsMax{0.f};
 
   std::size_t triangles() const { return positions.size() / 3; }
+  // Sets boundsMin and boundsMax from the positions (left as they are without any).
+  void computeBounds() {
+    if (positions.empty()) return;
+    boundsMin = boundsMax = positions.front();
+    for (const glm::vec3& p : positions) boundsMin = glm::min(boundsMin, p), boundsMax = glm::max(boundsMax, p);
+  }
 };
 
 }  // namespace millsim
