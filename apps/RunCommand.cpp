@@ -259,12 +259,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         publishToDevice(*run.device, writer.last(), run.settings.rate);
         regions->update(writer.last().t);
         regions->publishFields();
-        // Each VolumeObject's removedVolume follows the milling (a route may show it in a Text).
-        for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
-          auto& v = run.scene->volume(i);
-          const float removed = float(v.miller.totalRemoved());
-          if (v.node && removed != v.node->removedVolume.get()) v.node->removedVolume.set(removed);
-        }
+        publishRemovedVolumes(run);  // each VolumeObject's removedVolume follows the milling
       }
       sound->pump();
       for (const WindowCommand& c : controls.take()) {
@@ -328,10 +323,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       }
     }
     const LoopStats s = loop->stats();
-    for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
-      auto& v = run.scene->volume(i);
-      if (v.node) v.node->removedVolume.set(float(v.miller.totalRemoved()));
-    }
+    publishRemovedVolumes(run);
     printSummary(std::cout, s, run.rendererName, deviceName, run.settings.rate);
     sound->printSummary(std::cout);
     if (!args->report.empty()) {

@@ -52,22 +52,8 @@ ReplaySummary finishReplay(HapticLoop& loop, FrameLogWriter& writer, CompiledRun
   }
   summary.last = lastFrame.out;
   publishToDevice(*run.device, lastFrame, summary.rate);
-  for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
-    auto& v = run.scene->volume(i);
-    if (v.node) v.node->removedVolume.set(float(v.miller.totalRemoved()));
-  }
+  publishRemovedVolumes(run);
   return summary;
-}
-
-// Each volume's removedVolume field follows the milling while the scene's
-// events run (as the scene thread of a live run sets it), so that a route
-// from it — to a Text through a NumberToText — shows the replay's progress.
-void publishRemoved(CompiledRun& run) {
-  for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
-    auto& v = run.scene->volume(i);
-    const float removed = float(v.miller.totalRemoved());
-    if (v.node && removed != v.node->removedVolume.get()) v.node->removedVolume.set(removed);
-  }
 }
 
 // The recorded run's device is not opened: the loop writes its output here.
@@ -99,8 +85,8 @@ ReplaySummary replay(Scene& scene, const Trajectory& trajectory, std::ostream* l
   for (long n = 0; n < frames; ++n) {
     loop.stepSimulated();
     writer.drain(loop);
-    if (!events.empty()) {
-      publishRemoved(run);
+    if (!events.empty()) {  // a route from removedVolume shows the replay's progress
+      publishRemovedVolumes(run);
       events.advanceTo(double(n) / run.settings.rate);
     }
   }
@@ -161,8 +147,8 @@ ReplaySummary replayRecorded(Scene& scene, const RecordedRun& recorded, std::ost
     }
     loop.stepRecorded(f.t, f.periodUs, f.device, f.button);
     writer.drain(loop);
-    if (!events.empty()) {
-      publishRemoved(run);
+    if (!events.empty()) {  // a route from removedVolume shows the replay's progress
+      publishRemovedVolumes(run);
       events.advanceTo(f.t - frames.front().t);
     }
   }

@@ -6,6 +6,7 @@
 
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/volume/VolumeObject.h"
 #include "millsim/volume/VoxelScene.h"
 
 namespace millsim {
@@ -86,6 +87,14 @@ void publishToDevice(HapticsDevice& device, const FrameRecord& r, double rate) {
   device.proxyOrientation.set(toRotation(r.out.drawnTool.orientation));
   device.hapticsRate.set(float(rate));
   device.hapticsLoopTime.set(Time{r.computeUs * 1e-6});
+}
+
+void publishRemovedVolumes(const CompiledRun& run) {
+  for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
+    auto& v = run.scene->volume(i);
+    const float removed = float(v.miller.totalRemoved());
+    if (v.node && removed != v.node->removedVolume.get()) v.node->removedVolume.set(removed);
+  }
 }
 
 }  // namespace millsim

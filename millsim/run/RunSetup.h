@@ -46,4 +46,9 @@ std::unique_ptr<HapticAlgorithm> compileRenderer(Scene& scene, const std::string
 // force, mainButton, hapticsRate, …). Scene thread only.
 void publishToDevice(HapticsDevice& device, const FrameRecord& r, double rate);
 
+// Sets each VolumeObject's removedVolume to what its Miller has removed so
+// far, where it changed (a route may show it). Scene thread only; the
+// total is safe to read while the haptic thread mills (Milling.h).
+void publishRemovedVolumes(const CompiledRun& run);
+
 }  // namespace millsim
