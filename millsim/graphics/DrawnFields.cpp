@@ -10,7 +10,6 @@
 #include "millsim/std/FontStyle.h"
 #include "millsim/std/LightNode.h"
 #include "millsim/std/Material.h"
-#include "millsim/std/MatrixTransform.h"
 #include "millsim/std/NavigationInfo.h"
 #include "millsim/std/Normal.h"
 #include "millsim/std/Text.h"
@@ -22,11 +21,11 @@ namespace millsim {
 
 DrawnFields::DrawnFields(const Scene& scene) {
   scene.forEachNode([&](Node& n) {
-    if (dynamic_cast<Transform*>(&n) || dynamic_cast<Switch*>(&n) || dynamic_cast<Material*>(&n) ||
+    if (dynamic_cast<TransformingNode*>(&n) || dynamic_cast<Switch*>(&n) || dynamic_cast<Material*>(&n) ||
         dynamic_cast<ClipPlane*>(&n) || dynamic_cast<Background*>(&n) || dynamic_cast<Text*>(&n) ||
         dynamic_cast<FontStyle*>(&n) || dynamic_cast<LightNode*>(&n) || dynamic_cast<NavigationInfo*>(&n) ||
         dynamic_cast<Coordinate*>(&n) || dynamic_cast<Normal*>(&n) || dynamic_cast<ColorNode*>(&n) ||
-        dynamic_cast<TextureCoordinate*>(&n) || dynamic_cast<MatrixTransform*>(&n))
+        dynamic_cast<TextureCoordinate*>(&n))
       for (Field* f : n.fields()) fields_.push_back(f);
   });
   mark();

@@ -2,7 +2,7 @@
 // DrawnFields: has a field that graphics draws from changed since the last
 // SceneView was read? The scene thread of `millsim run` asks after each event
 // tick and publishes a new view only then. Watched: every field of the
-// Transforms, Switches, Materials, ClipPlanes, Backgrounds, NavigationInfos,
+// Transforms and MatrixTransforms, Switches, Materials, ClipPlanes, Backgrounds, NavigationInfos,
 // lights, Texts and FontStyles, and of mesh vertex data (Coordinate, Normal,
 // Color, TextureCoordinate), set by a route, an event or a key. Primitive
 // sizes are initializeOnly; volumes are placed once per run.
