@@ -61,7 +61,9 @@ void printSummary(std::ostream& os, const LoopStats& s, const std::string& rende
      << " Hz, missed deadlines " << s.missedDeadlines << " of " << s.frames << " ("
      << std::setprecision(2) << (s.frames ? 100.0 * double(s.missedDeadlines) / double(s.frames) : 0.0) << " %)\n";
   os << "  compute per frame: mean " << std::setprecision(1) << s.computeUs.mean() << " µs, p99 "
-     << s.computeUs.percentile(0.99) << " µs, max " << s.computeUs.max() << " µs\n";
+     << s.computeUs.percentile(0.99) << " µs, max " << s.computeUs.max() << " µs (wall); on the thread's CPU p99 "
+     << s.computeCpuUs.percentile(0.99) << " µs, max " << s.computeCpuUs.max() << " µs; " << s.preemptedFrames
+     << " frames lost the CPU for over " << std::setprecision(0) << LoopStats::kPreemptedUs << " µs\n";
   os << "  peak force " << std::setprecision(3) << s.peakForce << " N, peak torque " << std::setprecision(4)
      << s.peakTorque << " N·m, frames in contact " << s.contactFrames << ", most contacts " << s.maxContacts << "\n";
   os << "  removed volume " << std::setprecision(3) << s.removedVolume * 1e9 << " mm³\n";

@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "bench/ThreadCpuTime.h"
+#include "millsim/run/ThreadCpuTime.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/Milling.h"
@@ -22,7 +22,6 @@
 #include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
-using millsim::bench::threadCpuMicros;
 
 namespace {
 

@@ -18,14 +18,13 @@
 
 #include <unistd.h>
 
-#include "bench/ThreadCpuTime.h"
+#include "millsim/run/ThreadCpuTime.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
-using millsim::bench::threadCpuMicros;
 
 namespace {
 

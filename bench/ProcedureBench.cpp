@@ -21,13 +21,12 @@
 #include <string>
 #include <vector>
 
-#include "bench/ThreadCpuTime.h"
+#include "millsim/run/ThreadCpuTime.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
 
 using namespace millsim;
-using millsim::bench::threadCpuMicros;
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/run/ThreadCpuTime.h"
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/VoxelScene.h"
 
@@ -139,7 +140,7 @@ void HapticLoop::setLive(bool enabled, double forceLimit, double torqueLimit) {
 }
 
 void HapticLoop::frame(double t, double dt, double periodUs) {
-  const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
+  const FrameStart begin = frameStart();
   const DeviceReading reading = driver_->read(t, dt);
   // A missing or corrupt sample keeps the last good pose; the watchdog sees its age.
   if (reading.valid && finitePose(reading.pose)) {
@@ -154,7 +155,7 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
 }
 
 void HapticLoop::stepRecorded(double t, double periodUs, const Pose& device, bool button) {
-  const auto begin = settings_.timing ? Clock::now() : Clock::time_point();
+  const FrameStart begin = frameStart();
   haveReading_ = true;
   sampleTime_ = t;
   advance(t, frameDt(periodUs), periodUs, device, button, begin);
@@ -165,7 +166,11 @@ double HapticLoop::frameDt(double periodUs) const {
   return std::clamp(periodUs * 1e-6, 0.25 / settings_.rate, 4.0 / settings_.rate);
 }
 
-void HapticLoop::advance(double t, double dt, double periodUs, const Pose& device, bool button, Clock::time_point begin) {
+HapticLoop::FrameStart HapticLoop::frameStart() const {
+  return settings_.timing ? FrameStart{Clock::now(), threadCpuMicros()} : FrameStart{};
+}
+
+void HapticLoop::advance(double t, double dt, double periodUs, const Pose& device, bool button, FrameStart begin) {
   if (const std::uint32_t v = liveVersion_.load(std::memory_order_acquire); v != liveSeen_) {
     liveSeen_ = v;
     enabled_ = liveEnabled_.load(std::memory_order_relaxed);
@@ -217,7 +222,8 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   r.torque = w.torque;
   r.out = out;
   lastOut_ = out;
-  r.computeUs = settings_.timing ? microseconds(Clock::now() - begin) : 0.0;
+  r.cpuUs = settings_.timing ? threadCpuMicros() - begin.cpuUs : 0.0;
+  r.computeUs = settings_.timing ? microseconds(Clock::now() - begin.wall) : 0.0;
   r.periodUs = periodUs;
   r.removedVolume = stats_.removedVolume;
   r.tool = tool_;
@@ -228,6 +234,8 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   ++stats_.frames;
   stats_.periodUs.add(periodUs);
   stats_.computeUs.add(r.computeUs);
+  stats_.computeCpuUs.add(r.cpuUs);
+  stats_.preemptedFrames += r.computeUs - r.cpuUs > LoopStats::kPreemptedUs;
   stats_.peakForce = std::max(stats_.peakForce, glm::length(w.force));
   stats_.peakTorque = std::max(stats_.peakTorque, glm::length(w.torque));
   stats_.maxContacts = std::max(stats_.maxContacts, out.contacts);
@@ -317,6 +325,7 @@ void HapticLoop::recordStop() {
   r.out.flags = kSafetyStopped;
   r.out.burrCuts = false;
   r.computeUs = 0.0;
+  r.cpuUs = 0.0;
   r.periodUs = 0.0;
   r.removedVolume = stats_.removedVolume;
   r.tool = tool_;

@@ -50,7 +50,8 @@ struct FrameRecord {
   glm::dvec3 force{0.0};  // N, world frame, as sent (after the safety layer)
   glm::dvec3 torque{0.0};
   HapticOutput out;       // the renderer's output (flags include the safety events)
-  double computeUs = 0.0; // device I/O + step + milling; 0 unless timing is on
+  double computeUs = 0.0; // device I/O + step + milling, wall clock; 0 unless timing is on
+  double cpuUs = 0.0;     // the same on the thread's CPU clock: less than computeUs when the OS took the CPU
   double periodUs = 0.0;  // time since the previous frame started
   double removedVolume = 0.0;  // m³ milled so far
   ToolGeometry tool;           // the burr that milled this frame (a live burr swap changes it)
@@ -78,7 +79,12 @@ struct LoopStats {
   long frames = 0;
   long missedDeadlines = 0;    // frames started > half a period late, plus skipped slots
   double elapsed = 0.0;        // s, first to last frame
-  FrameHistogram periodUs, computeUs;
+  FrameHistogram periodUs, computeUs, computeCpuUs;
+  // Frames whose wall time exceeded their CPU time by more than kPreemptedUs:
+  // the thread lost the CPU mid-frame (preemption, a host's steal), so their
+  // wall time measures the machine, not the frame.
+  static constexpr double kPreemptedUs = 10.0;
+  long preemptedFrames = 0;
   double peakForce = 0.0, peakTorque = 0.0;
   int maxContacts = 0;
   long contactFrames = 0;
@@ -164,9 +170,14 @@ public:
 private:
   void frame(double t, double dt, double periodUs);
   // Everything after reading the device: live fields, swap, step, milling,
-  // safety, output, record. `begin` is when the frame started (timing).
-  void advance(double t, double dt, double periodUs, const Pose& device, bool button,
-               std::chrono::steady_clock::time_point begin);
+  // When a frame started, on the wall and the thread's CPU clock (timing).
+  struct FrameStart {
+    std::chrono::steady_clock::time_point wall;
+    double cpuUs = 0.0;
+  };
+  FrameStart frameStart() const;
+  // safety, output, record.
+  void advance(double t, double dt, double periodUs, const Pose& device, bool button, FrameStart begin);
   // After the device's stop(): logs the zero output it received.
   void recordStop();
   void runRealTime(double duration);
