@@ -1,4 +1,4 @@
-// millsim bench accuracy | physical | rates | zwidth: the measurements behind docs/results.md
+// millsim bench accuracy | physical | rates | procedure | zwidth: the measurements behind docs/results.md
 // and docs/accuracy.md
 // (scripts/bench runs them). Renderers are named by registry type and
 // configured by field name, so a new renderer type needs no change here.
@@ -13,6 +13,7 @@
 #include "Commands.h"
 #include "measure/Accuracy.h"
 #include "measure/Physical.h"
+#include "measure/Procedure.h"
 #include "measure/Rates.h"
 #include "measure/ZWidth.h"
 
@@ -236,6 +237,55 @@ int runRates(const RatesArgs& a) {
   return kExitOk;
 }
 
+struct ProcedureArgs {
+  std::vector<std::string> renderers;
+  std::string field;
+  std::vector<std::string> values;
+  std::string scene, trajectory;
+  long bruteEvery = 100;
+  std::string csv;
+};
+
+int runProcedure(const ProcedureArgs& a) {
+  std::ofstream csv;
+  if (!a.csv.empty()) {
+    const bool fresh = !std::ifstream(a.csv).good();
+    csv.open(a.csv, std::ios::app);
+    if (!csv) throw std::runtime_error("cannot write " + a.csv);
+    if (fresh)
+      csv << "renderer,resolution,phase,frames,p50_us,p99_us,p999_us,max_us,control_p99_us,control_p999_us,"
+             "brute_samples,brute_p50_us,brute_max_us,preempted,max_contacts,removed_mm3\n";
+  }
+  const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
+  const std::vector<std::string> values = a.values.empty() ? std::vector<std::string>{""} : a.values;
+  for (const std::string& type : types) {
+    for (const std::string& v : values) {
+      RendererSpec spec{type, {}};
+      std::string label = "default";
+      if (!a.field.empty() && !v.empty()) spec.fields.push_back({a.field, v}), label = a.field + "=" + v;
+      const ProcedureResult r = measureProcedure(spec, label, a.scene, a.trajectory, a.bruteEvery);
+      std::cout << r.renderer << " " << r.resolution << ": removed " << fmt(r.removedMm3) << " mm3, "
+                << r.maxContacts << " contacts at most, " << r.preempted << " frames lost the CPU\n";
+      for (const ProcedurePhase& p : r.phases) {
+        std::cout << "  " << std::left << std::setw(8) << p.name << std::right << std::setw(6) << p.frames
+                  << " frames: p50 " << fmt(p.cpu.p50) << ", p99 " << fmt(p.cpu.p99) << ", p99.9 " << fmt(p.cpu.p999)
+                  << ", max " << fmt(p.cpu.max) << " us (control p99 " << fmt(p.control.p99) << ", p99.9 "
+                  << fmt(p.control.p999) << " us)";
+        if (p.name == "milling" && r.bruteSamples > 0)
+          std::cout << "; compiled afresh instead: p50 " << fmt(r.brute.p50) << " us (" << r.bruteSamples
+                    << " samples, " << fmt(r.brute.p50 / std::max(1e-9, p.cpu.p50)) << "x)";
+        std::cout << "\n";
+        if (csv)
+          csv << r.renderer << "," << r.resolution << "," << p.name << "," << p.frames << "," << p.cpu.p50 << ","
+              << p.cpu.p99 << "," << p.cpu.p999 << "," << p.cpu.max << "," << p.control.p99 << ","
+              << p.control.p999 << "," << r.bruteSamples << "," << r.brute.p50 << "," << r.brute.max << ","
+              << r.preempted << "," << r.maxContacts << "," << r.removedMm3 << "\n";
+      }
+    }
+  }
+  return kExitOk;
+}
+
 struct ZWidthArgs {
   std::vector<std::string> renderers;
   double from = 250.0, to = 1024000.0;
@@ -346,6 +396,24 @@ void addBenchCommand(CLI::App& app, int& result) {
       ->check(CLI::IsMember({"gentle", "deep"}));
   rates->add_option("--csv", r->csv, "Append rows to this CSV");
   onRun(rates, r, runRates, result);
+
+  auto* proc = bench->add_subcommand(
+      "procedure", "Frame times of the paper's §8.2 procedure per phase (free, contact, lean, milling), simulated time");
+  auto pr = std::make_shared<ProcedureArgs>();
+  proc->add_option("--renderer", pr->renderers, "Renderer type (repeatable; default: every registered one)");
+  proc->add_option("--field", pr->field, "Resolution field to set, e.g. pointShellScale");
+  proc->add_option("--values", pr->values, "Values of --field, e.g. 1,2,3")->delimiter(',');
+  proc->add_option("--scene", pr->scene, "The scene, e.g. x3d/default.x3d (its renderer is replaced)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  proc->add_option("--trajectory", pr->trajectory, "The procedure, e.g. x3d/trajectories/section-8-2.csv")
+      ->required()
+      ->check(CLI::ExistingFile);
+  proc->add_option("--brute-every", pr->bruteEvery,
+                   "Compile the renderer afresh on every Nth milling frame (the brute-force variant; 0: never)")
+      ->check(CLI::Range(0L, 1000000L));
+  proc->add_option("--csv", pr->csv, "Append one row per renderer and phase to this CSV");
+  onRun(proc, pr, runProcedure, result);
 
   auto* zw = bench->add_subcommand(
       "zwidth", "Largest stable stiffness per renderer and grip, closed loop at 1 kHz (Z-width sweep)");

@@ -162,6 +162,9 @@ public:
 
   // Complete after join() or between simulated frames.
   LoopStats stats() const;
+  // The scene the loop steps and mills, for use between simulated frames on
+  // the thread that steps them (a benchmark compiling a renderer against it).
+  VoxelScene& scene() { return scene_; }
   // Why the device stopped the run (empty if it did not).
   const std::string& failure() const { return failure_; }
   const LoopSettings& settings() const { return settings_; }
