@@ -124,12 +124,23 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     // whichever point of the rim happens to be deepest: a sideways drift).
     if (findEntry(field, proxy_, probe, entry)) proxy_ = entry;
   }
+  glm::dvec3 previousNormal(0.0);  // the face the last slide was held by
   for (int it = 0; it < params_.slideIterations; ++it) {
     const glm::dvec3 n = field.outwardNormal(proxy_);
     if (n == glm::dvec3(0.0)) break;  // no gradient (homogeneous material): stay put
     const glm::dvec3 delta = probe - proxy_;
     // Remove the component that would push the proxy into the material.
     glm::dvec3 move = delta - std::min(glm::dot(delta, n), 0.0) * n;
+    // In a crease (a hole's floor and wall) a slide along one face runs into
+    // the face the last slide was held by, and the projection throws it back:
+    // slide along the crease line instead, as a god object constrained by
+    // two planes does; it ends where the probe's projection on that line is.
+    if (params_.slideAlongCreases && glm::dot(move, previousNormal) < 0.0 && glm::dot(n, previousNormal) < 0.985) {
+      const glm::dvec3 edge = glm::cross(n, previousNormal);
+      const double e = glm::length(edge);
+      if (e > 1e-9) move = glm::dot(delta, edge / e) * (edge / e);
+    }
+    previousNormal = n;
     const double len = glm::length(move);
     if (len < 1e-3 * h) break;
     const double maxStep = params_.maxSlideVoxels * h;
@@ -196,9 +207,9 @@ glm::dvec3 ProxyPoint::projectToSurface(const ProxyField& field, glm::dvec3 p, d
     if (!(gg > 0.0) || !std::isfinite(gg)) break;
     glm::dvec3 step = -(s / gg) * g;
     const double len = glm::length(step);
+    if (len < 1e-3 * maxStep) break;  // on the zero set to 0.1 µm at 0.1 mm voxels
     if (len > maxStep) step *= maxStep / len;
     p += step;
-    if (len < 1e-4 * maxStep) break;
   }
   return p;
 }

@@ -99,6 +99,9 @@ public:
     // concave crease a slide along one face runs into the other (the burr's
     // proxy; its field is a maximum over the sphere, whose creases are sharp).
     bool refuseSinkingSlides = false;
+    // Slide along the line where two faces meet when a slide runs from one
+    // into the other (two-plane god object), instead of bouncing between them.
+    bool slideAlongCreases = false;
   };
   ProxyPoint() = default;
   explicit ProxyPoint(Params p) : params_(p) {}
