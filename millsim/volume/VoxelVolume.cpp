@@ -11,6 +11,16 @@ namespace {
 std::once_flag vdbInitialized;
 }
 
+VoxelVolume::~VoxelVolume() = default;
+VoxelVolume::VoxelVolume(const VoxelVolume&) = default;
+VoxelVolume::VoxelVolume(VoxelVolume&&) noexcept = default;
+VoxelVolume& VoxelVolume::operator=(const VoxelVolume&) = default;
+VoxelVolume& VoxelVolume::operator=(VoxelVolume&&) noexcept = default;
+
+std::size_t VoxelVolume::memoryBytes() const { return static_cast<std::size_t>(grid_->memUsage()); }
+std::uint64_t VoxelVolume::activeVoxels() const { return grid_->activeVoxelCount(); }
+float VoxelVolume::valueAt(int i, int j, int k) const { return grid_->tree().getValue(openvdb::Coord(i, j, k)); }
+
 VoxelVolume::VoxelVolume(Grid::Ptr grid, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue)
     : grid_(std::move(grid)),
       dims_(dims),

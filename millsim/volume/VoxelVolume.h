@@ -27,6 +27,14 @@ public:
   using Grid = openvdb::FloatGrid;
 
   VoxelVolume(Grid::Ptr grid, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue);
+  // Out of line, as are the members below that walk the tree: inlined, they
+  // make every including file instantiate and optimise OpenVDB's tree code
+  // (about 10 s of a release build per file).
+  ~VoxelVolume();
+  VoxelVolume(const VoxelVolume&);
+  VoxelVolume(VoxelVolume&&) noexcept;
+  VoxelVolume& operator=(const VoxelVolume&);
+  VoxelVolume& operator=(VoxelVolume&&) noexcept;
 
   // Copies a dense block (x fastest, then y, then z). Values at or below
   // airValue become background. Throws VolumeError on bad sizes or spacing.
@@ -47,9 +55,9 @@ public:
     return c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < dims_.x && c.y() < dims_.y && c.z() < dims_.z;
   }
 
-  std::size_t memoryBytes() const { return static_cast<std::size_t>(grid_->memUsage()); }
-  std::uint64_t activeVoxels() const { return grid_->activeVoxelCount(); }
-  float valueAt(int i, int j, int k) const { return grid_->tree().getValue(openvdb::Coord(i, j, k)); }
+  std::size_t memoryBytes() const;
+  std::uint64_t activeVoxels() const;
+  float valueAt(int i, int j, int k) const;
 
   // Deterministic digest of dimensions, spacing and every voxel value (FNV-1a over a dense walk).
   std::uint64_t contentHash() const;
