@@ -157,53 +157,28 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
 
 glm::dvec3 separatingTranslation(const PointContact* contacts, int count, double* lambda) {
   count = std::min(count, kMaxPointContacts);
-  bool active[kMaxPointContacts];
-  for (int i = 0; i < count; ++i) active[i] = contacts[i].depth > 0.0, lambda[i] = 0.0;
-  // Active set: solve the Gram system of the active normals for the shares,
-  // drop the most negative share, repeat.
-  for (int round = 0; round < count; ++round) {
-    int idx[kMaxPointContacts], m = 0;
-    for (int i = 0; i < count; ++i)
-      if (active[i]) idx[m++] = i;
-    if (m == 0) break;
-    double g[kMaxPointContacts][kMaxPointContacts + 1];
-    for (int i = 0; i < m; ++i) {
-      for (int j = 0; j < m; ++j) g[i][j] = glm::dot(contacts[idx[i]].normal, contacts[idx[j]].normal);
-      g[i][i] += 1e-9;  // two contacts on one plane share its depth
-      g[i][m] = contacts[idx[i]].depth;
-    }
-    for (int col = 0; col < m; ++col) {  // Gaussian elimination, partial pivoting
-      int pivot = col;
-      for (int i = col + 1; i < m; ++i)
-        if (std::abs(g[i][col]) > std::abs(g[pivot][col])) pivot = i;
-      for (int j = 0; j <= m; ++j) std::swap(g[col][j], g[pivot][j]);
-      for (int i = col + 1; i < m; ++i) {
-        const double f = g[i][col] / g[col][col];
-        for (int j = col; j <= m; ++j) g[i][j] -= f * g[col][j];
-      }
-    }
-    double x[kMaxPointContacts];
-    for (int i = m - 1; i >= 0; --i) {
-      double s = g[i][m];
-      for (int j = i + 1; j < m; ++j) s -= g[i][j] * x[j];
-      x[i] = s / g[i][i];
-    }
-    int worst = -1;
-    for (int i = 0; i < m; ++i) {
-      lambda[idx[i]] = x[i];
-      if (x[i] < 0.0 && (worst < 0 || x[i] < x[worst])) worst = i;
-    }
-    if (worst < 0) break;
-    active[idx[worst]] = false, lambda[idx[worst]] = 0.0;
+  // The dual of min ½|d|² with n_j·d ≥ depth_j: min ½λᵀGλ − depthᵀλ over
+  // λ ≥ 0 (G the normals' Gram matrix), by projected Gauss–Seidel: a contact
+  // the others already push clear gets λ = 0, as in the rigid reference.
+  double g[kMaxPointContacts][kMaxPointContacts];
+  for (int i = 0; i < count; ++i) {
+    lambda[i] = 0.0;
+    for (int j = 0; j < count; ++j) g[i][j] = glm::dot(contacts[i].normal, contacts[j].normal);
   }
+  for (int sweep = 0; sweep < 100; ++sweep)
+    for (int i = 0; i < count; ++i) {
+      double r = contacts[i].depth;
+      for (int j = 0; j < count; ++j) r -= g[i][j] * lambda[j];
+      lambda[i] = std::max(0.0, lambda[i] + r / g[i][i]);
+    }
   glm::dvec3 d(0.0);
   for (int i = 0; i < count; ++i) d += lambda[i] * contacts[i].normal;
   // Contacts that push against each other (a tool wedged in a slot) have no
-  // translation out of both: the shares then cancel. Fall back to the sum of
-  // each contact's own push, as a penalty method would.
-  double deepest = 0.0;
-  for (int i = 0; i < count; ++i) deepest = std::max(deepest, contacts[i].depth);
-  if (glm::length(d) < 0.5 * deepest || !std::isfinite(glm::length(d))) {
+  // translation out of both: the shares then grow and cancel. Fall back to
+  // the sum of each contact's own push, as a penalty method would.
+  double deepest = 0.0, largest = 0.0;
+  for (int i = 0; i < count; ++i) deepest = std::max(deepest, contacts[i].depth), largest = std::max(largest, lambda[i]);
+  if (glm::length(d) < 0.5 * deepest || largest > 10.0 * deepest || !std::isfinite(glm::length(d))) {
     d = glm::dvec3(0.0);
     for (int i = 0; i < count; ++i) lambda[i] = std::max(0.0, contacts[i].depth), d += lambda[i] * contacts[i].normal;
   }
