@@ -44,10 +44,13 @@ namespace {
 
 // Moves (a, b) to the least t(a, b) nearby: per scale, a parabola through
 // t at ±step along each coordinate, and a Newton step to its vertex (at most
-// two steps; off a ridge, two steps down its steeper side).
+// two steps; off a ridge, two steps down its steeper side). A move must gain
+// more than `gain`: where t is about as small along many lines (a burr in
+// its own round pit) a tracked contact then stays put instead of wandering
+// with the iso-surface's ripple.
 template <class T>
 double fitLeast(const T& t, double& a, double& b, double ta, const double* scales, int count, double stepA,
-                double stepB) {
+                double stepB, double gain) {
   for (int k = 0; k < count; ++k) {
     const double e[2] = {scales[k] * stepA, scales[k] * stepB};
     double move[2] = {0.0, 0.0}, side[3] = {a, b, ta};  // the best of the samples, should no step go downhill
@@ -66,11 +69,11 @@ double fitLeast(const T& t, double& a, double& b, double ta, const double* scale
     bool moved = false;
     for (const double f : {1.0, 0.5}) {
       const double tn = t(a + f * move[0], b + f * move[1]);
-      if (!(tn < ta)) continue;
+      if (!(tn < ta - gain)) continue;
       a += f * move[0], b += f * move[1], ta = tn, moved = true;
       break;
     }
-    if (!moved && side[2] < ta) a = side[0], b = side[1], ta = side[2];
+    if (!moved && side[2] < ta - gain) a = side[0], b = side[1], ta = side[2];
   }
   return ta;
 }
@@ -79,53 +82,61 @@ double fitLeast(const T& t, double& a, double& b, double ta, const double* scale
 // kink (an edge), a fit's vertex is off the kink by up to its step.
 constexpr double kFresh[] = {2.0, 2.0, 1.0, 0.5, 0.25, 0.1};
 constexpr double kTracking[] = {0.5, 0.25, 0.1};
+// What a tracked contact's move must gain (voxels): the iso-surface ripple's size.
+constexpr double kGain = 0.02;
 
 }  // namespace
 
-double deepestOnSphere(const HapticScene& scene, const glm::dvec3& c, double r, glm::dvec3& u, double tGuess,
-                       glm::dvec3& normal, double& depth) {
+double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, glm::dvec3& u, double tGuess,
+                     glm::dvec3& normal, double& depth) {
   const double h = scene.voxelSize(), tMax = r + 4.0 * h;
-  const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-  const glm::dvec3 t2 = glm::cross(u, t1), u0 = u;
-  double guess = tGuess;
-  auto dir = [&](double a, double b) {
-    return glm::normalize(u0 + std::tan(std::clamp(a, -1.2, 1.2)) * t1 + std::tan(std::clamp(b, -1.2, 1.2)) * t2);
-  };
-  auto t = [&](double a, double b) { return lineCrossing(scene, c, dir(a, b), guess, -r, tMax); };
-  double a = 0.0, b = 0.0;
-  const double t0 = t(0.0, 0.0);
-  guess = t0;
-  // The averaging angle: a voxel across on the burr's surface.
-  const double angle = std::min(0.3, h / r);
-  const bool fresh = tGuess >= r;
-  const double tBest = fresh ? fitLeast(t, a, b, t0, kFresh, 6, angle, angle)
-                             : fitLeast(t, a, b, t0, kTracking, 3, angle, angle);
-  u = dir(a, b);
-  normal = -u, depth = r - tBest;
-  // The direction: the normal of the surface through the crossings two
-  // voxels to each side (one voxel's iso-surface is terraced by the density
-  // ramp, its local normal off by several degrees: averaged over ±2 voxels
-  // the ball's error falls from 6.6° to 2.5°). Kept only when all four lines
-  // meet material and it stays within 30° of the deepest line's (a crease or
-  // rim in between would tilt it).
-  if (tBest > 0.0 && tBest < r) {
-    const double span = 2.0 * h / tBest;
-    const double da[4] = {span, -span, 0.0, 0.0}, db[4] = {0.0, 0.0, span, -span};
-    glm::dvec3 q[4];
-    for (int i = 0; i < 4; ++i) {
-      const glm::dvec3 d = dir(a + da[i], b + db[i]);
-      const double ti = lineCrossing(scene, c, d, tBest, -r, tMax);
-      if (ti >= tMax) return tBest;
-      q[i] = c + ti * d;
-    }
-    glm::dvec3 n = glm::cross(q[0] - q[1], q[2] - q[3]);
-    if (!(glm::length(n) > 0.0)) return tBest;
-    n = glm::normalize(n);
-    if (glm::dot(n, u) < 0.0) n = -n;
-    if (glm::dot(n, u) < std::cos(0.5236)) return tBest;
-    normal = -n, depth = r - glm::dot(tBest * u, n);  // the deepest line's crossing, along the new direction
+  {
+    // Towards the deepest line nearby, each move gaining at least kGain
+    // voxels: at an edge a line a few degrees off is much shallower, while in
+    // a burr's own round pit, about as deep along many lines, u stays put.
+    const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 t2 = glm::cross(u, t1), u0 = u;
+    double guess = tGuess;
+    auto dir = [&](double a, double b) {
+      return glm::normalize(u0 + std::tan(std::clamp(a, -1.2, 1.2)) * t1 + std::tan(std::clamp(b, -1.2, 1.2)) * t2);
+    };
+    auto t = [&](double a, double b) { return lineCrossing(scene, c, dir(a, b), guess, -r, tMax); };
+    double a = 0.0, b = 0.0;
+    const double first = t(0.0, 0.0);
+    guess = first;
+    const double angle = std::min(0.3, h / r);
+    if (tGuess >= r) fitLeast(t, a, b, first, kFresh, 6, angle, angle, 0.0);
+    else fitLeast(t, a, b, first, kTracking, 3, angle, angle, kGain * h);
+    u = dir(a, b);
   }
-  return tBest;
+  const double t0 = lineCrossing(scene, c, u, tGuess, -r, tMax);
+  normal = -u, depth = r - t0;
+  // The normal of the surface through the crossings of four lines two voxels
+  // to each side: where the line meets a flat face it is the face's normal
+  // wherever it meets it, and the one-voxel density ramp's iso-surface,
+  // terraced with the voxel lattice (its local normal several degrees off
+  // where the surface is oblique to the voxel axes), is averaged over ±2
+  // voxels. Kept when all four lines meet material and it is within 30° of
+  // the line (else a rim or a crease lies in between).
+  if (!(t0 > 0.0 && t0 < r)) return t0;
+  const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 t2 = glm::cross(u, t1);
+  const double span = std::tan(std::min(0.6, 2.0 * h / t0));
+  const glm::dvec3 side[4] = {t1, -t1, t2, -t2};
+  glm::dvec3 q[4];
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec3 d = glm::normalize(u + span * side[i]);
+    const double ti = lineCrossing(scene, c, d, t0, -r, tMax);
+    if (ti >= tMax) return t0;
+    q[i] = c + ti * d;
+  }
+  glm::dvec3 n = glm::cross(q[0] - q[1], q[2] - q[3]);
+  if (!(glm::length(n) > 0.0)) return t0;
+  n = glm::normalize(n);
+  if (glm::dot(n, u) < 0.0) n = -n;
+  if (glm::dot(n, u) < std::cos(0.5236)) return t0;
+  normal = -n, depth = r - glm::dot(t0 * u, n);  // the line's crossing, along the surface's normal
+  return t0;
 }
 
 double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, double rho, double y0,
@@ -150,7 +161,8 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
   const bool fresh = tGuess >= rho;
   // A voxel across on the shaft's surface, and along it.
   const double angle = std::min(0.6, h / rho);
-  const double tBest = fresh ? fitLeast(t, y, phi, t0, kFresh, 6, h, angle) : fitLeast(t, y, phi, t0, kTracking, 3, h, angle);
+  const double tBest = fresh ? fitLeast(t, y, phi, t0, kFresh, 6, h, angle, 0.0)
+                             : fitLeast(t, y, phi, t0, kTracking, 3, h, angle, 0.0);
   y = std::clamp(y, y0, y1);
   return tBest;
 }

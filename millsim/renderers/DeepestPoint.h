@@ -27,13 +27,13 @@ struct PointContact {
 double lineCrossing(const HapticScene& scene, const glm::dvec3& o, const glm::dvec3& u, double t0, double tMin,
                     double tMax);
 
-// The burr sphere (centre c, radius r): moves the unit direction u (centre
-// towards material) to where the crossing along c + t·u is nearest the
-// centre and returns that t (tGuess: where to start the search, the last
-// frame's t or r). `normal` and `depth` are the contact's: the surface's
-// normal over ±2 voxels round the crossing, and the burr's depth along it.
-double deepestOnSphere(const HapticScene& scene, const glm::dvec3& c, double r, glm::dvec3& u, double tGuess,
-                       glm::dvec3& normal, double& depth);
+// The burr sphere (centre c, radius r) near the unit direction u (centre
+// towards material): moves u towards the deepest line nearby (only by moves
+// that gain), returns where c + t·u crosses into material (tGuess: where to
+// start the search), and the contact's `normal` (the surface's, over ±2
+// voxels round the crossing) and the burr's `depth` along it.
+double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, glm::dvec3& u, double tGuess,
+                     glm::dvec3& normal, double& depth);
 
 // The shaft (axis c + y·R·ŷ for y in [y0, y1], radius rho): moves (y, phi) —
 // the radial line from the axis at y towards R·(cos phi, 0, sin phi) — to where

@@ -164,8 +164,10 @@ private:
   // the moment of each contact's share. The surface points only find where
   // to look: each is tested on a surface grown by the largest gap between
   // points (a flat face the burr or shaft touches anywhere reaches one of
-  // them), and a point in material that no contact found yet explains seeds
-  // a new one.
+  // them). The burr's first contact starts along the sum of its points'
+  // penetrations and is then tracked; a point in material that no contact
+  // explains seeds another (a face more than 60° from the burr's first, or
+  // a shaft contact).
   void prepareDeepest(const ToolGeometry& tool, double y0) {
     r_ = tool.tipRadius, rho_ = tool.shaftRadius, y0_ = y0, y1_ = tool.shaftLength;
     // The largest angle from any direction to its nearest sphere point, over 4000 directions.
@@ -193,18 +195,18 @@ private:
     int n = 0;
     auto add = [&](const Track& t, const PointContact& pc) {
       if (pc.depth <= 0.0 || n == kMaxPointContacts) return false;
-      for (int j = 0; j < n; ++j)  // the same contact found again
-        if (found[j].shaft == t.shaft && glm::dot(contacts[j].normal, pc.normal) > 0.97 &&
-            glm::length(contacts[j].point - pc.point) < 2.0 * h)
+      // The same contact found again, or another line into the same face: a
+      // burr in its own round pit is about as deep along many lines, and
+      // contacts that came and went among them would shake the hand. The
+      // burr keeps its first contact and adds only faces more than 60° away;
+      // a shaft contact within 30° and 4 voxels of another is the same one.
+      for (int j = 0; j < n; ++j)
+        if (found[j].shaft == t.shaft &&
+            (t.shaft ? glm::dot(contacts[j].normal, pc.normal) > 0.866 && glm::length(contacts[j].point - pc.point) < 4.0 * h
+                     : glm::dot(contacts[j].normal, pc.normal) > 0.5))
           return false;
       found[n] = t, contacts[n++] = pc;
       return true;
-    };
-    auto burr = [&](Track t) {
-      PointContact pc;
-      t.t = deepestOnSphere(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
-      pc.point = c + t.t * t.u, t.normal = pc.normal;
-      return add(t, pc);
     };
     auto shaft = [&](Track t) {
       t.t = deepestOnShaft(scene, c, R, rho_, y0_, y1_, t.y, t.phi, t.t);
@@ -227,7 +229,10 @@ private:
       out.flags |= kFlagHeldForce;
       Track t;
       for (int j = 0; j < tracked_; ++j)
-        if (!track_[j].shaft) t = track_[j];
+        if (!track_[j].shaft) {
+          t = track_[j];
+          break;
+        }
       if (t.u == glm::dvec3(0.0) && glm::length(c - cut_.centre()) > 0.0)
         t.u = glm::normalize(c - cut_.centre()), t.normal = -t.u, t.t = 0.0;
       if (t.u != glm::dvec3(0.0)) {
@@ -237,12 +242,37 @@ private:
         add(t, {c + t.t * t.u, t.normal, r_ - glm::dot(t.t * t.u, -t.normal)});
       }
     } else {
-      for (int j = 0; j < tracked_; ++j)
-        if (!track_[j].shaft) burr(track_[j]);
+      // The burr: one contact, along the sum of its points' penetrations (eq.
+      // 14's a_i, on the grown sphere): a point enters at zero, so the line
+      // turns continuously — also for a burr in its own round pit, where the
+      // material is about as deep along many lines — and the contact's normal
+      // and depth are measured where it meets the surface (sphereContact).
+      glm::dvec3 sum(0.0);
+      for (const glm::dvec3& offset : sphere_) {
+        const glm::dvec3 v = c + (1.0 + sphereGrow_ / r_) * (R * offset);
+        if (scene.inside(v)) sum += penetration(scene, v, c, h);
+      }
+      if (glm::length(sum) > 0.0) {
+        Track t;
+        t.t = r_, t.u = -glm::normalize(sum);
+        for (int j = 0; j < tracked_; ++j)
+          if (!track_[j].shaft) {
+            t = track_[j];  // in contact: from the last frame's first line
+            break;
+          }
+        PointContact pc;
+        t.t = sphereContact(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
+        pc.point = c + t.t * t.u, t.normal = pc.normal;
+        add(t, pc);
+      }
+      // A second face more than 60° from the first (a hole's wall and bottom).
       seed(scene, c, R, contacts, n, false, [&](std::size_t i) {
         Track t;
         t.u = R * sphere_[i] / r_, t.t = r_;
-        return burr(t);
+        PointContact pc;
+        t.t = sphereContact(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
+        pc.point = c + t.t * t.u, t.normal = pc.normal;
+        return add(t, pc);
       });
     }
     for (int j = 0; j < tracked_; ++j)
