@@ -18,6 +18,15 @@ namespace millsim {
 namespace {
 
 class SurfacePointAlgorithm final : public HapticAlgorithm {
+  // The deepest-points force (deepestPoints): the last frame's contacts, where to look first.
+  struct Track {
+    bool shaft = false;
+    glm::dvec3 u{0.0};       // burr: centre towards material (its deepest line)
+    glm::dvec3 normal{0.0};  // burr: the contact's normal (held while the centre is inside)
+    double y = 0.0, phi = 0.0;  // shaft: the radial line's height and angle
+    double t = 0.0;          // where the line met material
+  };
+
 public:
   SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k,
                         double feedResistance, bool deepest)
@@ -239,7 +248,8 @@ private:
         // No cap on the depth: a force that stopped growing would let the
         // hand push on for free and take more back on the way out.
         t.t = lineCrossing(scene, c, t.u, std::min(t.t, 0.0), -1.0, r_);
-        add(t, {c + t.t * t.u, t.normal, r_ - glm::dot(t.t * t.u, -t.normal)});
+        const double depth = r_ - glm::dot(t.t * t.u, -t.normal);
+        add(t, {c - (r_ - depth) * t.normal, t.normal, depth});
       }
     } else {
       // The burr: one contact, along the sum of its points' penetrations (eq.
@@ -260,18 +270,14 @@ private:
             t = track_[j];  // in contact: from the last frame's first line
             break;
           }
-        PointContact pc;
-        t.t = sphereContact(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
-        pc.point = c + t.t * t.u, t.normal = pc.normal;
+        const PointContact pc = burrContact(scene, c, t);
         add(t, pc);
       }
       // A second face more than 60° from the first (a hole's wall and bottom).
       seed(scene, c, R, contacts, n, false, [&](std::size_t i) {
         Track t;
         t.u = R * sphere_[i] / r_, t.t = r_;
-        PointContact pc;
-        t.t = sphereContact(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
-        pc.point = c + t.t * t.u, t.normal = pc.normal;
+        const PointContact pc = burrContact(scene, c, t);
         return add(t, pc);
       });
     }
@@ -290,6 +296,16 @@ private:
     out.contacts = n;
     tracked_ = n;
     std::copy(found, found + n, track_);
+  }
+
+  // The burr's contact near t.u (updates t). Its point is on the line
+  // through the centre along the normal: a sphere's contact force passes
+  // through its centre, so the burr alone gives no torque.
+  PointContact burrContact(const HapticScene& scene, const glm::dvec3& c, Track& t) const {
+    PointContact pc;
+    t.t = sphereContact(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
+    pc.point = c - (r_ - pc.depth) * pc.normal, t.normal = pc.normal;
+    return pc;
   }
 
   PointContact headContact(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, double h) const {
@@ -419,14 +435,6 @@ private:
   std::vector<glm::dvec3> sphere_, ring_;  // sphere_: the head's points (a sphere for the round burr)
   std::vector<glm::dvec3> target_;  // a non-round head's points: where each one's penetration is measured towards
   bool roundHead_ = true;
-  // The deepest-points force (deepestPoints): the last frame's contacts, where to look first.
-  struct Track {
-    bool shaft = false;
-    glm::dvec3 u{0.0};       // burr: centre towards material (its deepest line)
-    glm::dvec3 normal{0.0};  // burr: the contact's normal (held while the centre is inside)
-    double y = 0.0, phi = 0.0;  // shaft: the radial line's height and angle
-    double t = 0.0;          // where the line met material
-  };
   bool deepest_ = false;
   double r_ = 0.0, rho_ = 0.0, y0_ = 0.0, y1_ = 0.0, sphereGrow_ = 0.0, shaftGrow_ = 0.0;
   std::vector<char> inside_;  // per surface point: in material on the grown surface (sized at compile)
