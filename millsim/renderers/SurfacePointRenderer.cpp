@@ -257,19 +257,21 @@ private:
       // turns continuously — also for a burr in its own round pit, where the
       // material is about as deep along many lines — and the contact's normal
       // and depth are measured where it meets the surface (sphereContact).
-      glm::dvec3 sum(0.0);
-      for (const glm::dvec3& offset : sphere_) {
-        const glm::dvec3 v = c + (1.0 + sphereGrow_ / r_) * (R * offset);
-        if (scene.inside(v)) sum += penetration(scene, v, c, h);
+      Track t;
+      for (int j = 0; j < tracked_; ++j)
+        if (!track_[j].shaft) {
+          t = track_[j];  // in contact: from the last frame's first line
+          break;
+        }
+      if (t.u == glm::dvec3(0.0)) {
+        glm::dvec3 sum(0.0);
+        for (const glm::dvec3& offset : sphere_) {
+          const glm::dvec3 v = c + (1.0 + sphereGrow_ / r_) * (R * offset);
+          if (scene.inside(v)) sum += penetration(scene, v, c, h);
+        }
+        if (glm::length(sum) > 0.0) t.t = r_, t.u = -glm::normalize(sum);
       }
-      if (glm::length(sum) > 0.0) {
-        Track t;
-        t.t = r_, t.u = -glm::normalize(sum);
-        for (int j = 0; j < tracked_; ++j)
-          if (!track_[j].shaft) {
-            t = track_[j];  // in contact: from the last frame's first line
-            break;
-          }
+      if (t.u != glm::dvec3(0.0)) {
         const PointContact pc = burrContact(scene, c, t);
         add(t, pc);
       }
@@ -326,8 +328,9 @@ private:
   // Tests the burr's (or shaft's) points on the grown surface and, while some
   // point in material is not explained by a contact (not inside its tangent
   // plane, give or take the growth and half its depth: a concave surface
-  // curls up past the plane), starts a contact from the unexplained point
-  // nearest their centroid.
+  // curls up past the plane; for the burr, within 60° of a contact's
+  // normal), starts a contact from the unexplained point nearest their
+  // centroid.
   template <class Start>
   void seed(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, const PointContact* contacts, int& n,
             bool onShaft, const Start& start) {
@@ -347,7 +350,9 @@ private:
         if (!inside[i]) continue;
         const glm::dvec3 p = point(i);
         for (int j = 0; j < n && inside[i]; ++j)
-          if (glm::dot(p - contacts[j].point, contacts[j].normal) < grow + 0.5 * contacts[j].depth + h) inside[i] = 0;
+          if (glm::dot(p - contacts[j].point, contacts[j].normal) < grow + 0.5 * contacts[j].depth + h ||
+              (!onShaft && glm::dot(glm::normalize(p - c), contacts[j].normal) < -0.5))
+            inside[i] = 0;
         if (inside[i]) sum += p, ++left;
       }
       if (left == 0) return;
