@@ -67,8 +67,16 @@ ProcedureResult measureProcedure(const RendererSpec& spec, const std::string& la
     result.preempted += r.computeUs - r.cpuUs > LoopStats::kPreemptedUs;
     result.maxContacts = std::max(result.maxContacts, r.out.contacts);
     if (phase == 3 && bruteEvery > 0 && millingFrames++ % bruteEvery == 0 && loop) {
+      // Against a scene of its own over the same milled volumes: the loop's
+      // scene keeps the point shells it built, and compiling against it would
+      // reuse them instead of building them again.
       const double c0 = threadCpuMicros();
-      auto fresh = renderer->compile(loop->settings().tool, loop->scene());
+      VoxelScene fresh;
+      for (std::size_t i = 0; i < loop->scene().volumeCount(); ++i) {
+        const VoxelScene::Volume& v = loop->scene().volume(i);
+        fresh.addVolume(*v.voxels, v.placement.localToWorld, v.placement.iso, nullptr, v.tissues);
+      }
+      auto algorithm = renderer->compile(loop->settings().tool, fresh);
       brute.push_back(threadCpuMicros() - c0);
       afterBrute = true;
     }

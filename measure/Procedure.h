@@ -9,9 +9,10 @@
 //  - milling: in contact with the button held (upright or leaning).
 // Per phase: p50 / p99 / p99.9 / max, next to a constant-work control of the
 // phase's median length timed in the same run (what the machine adds to any
-// frame that long). And the brute-force variant of a milling frame: a renderer
-// compiled afresh against the milled scene (#3 rebuilds its point shell), on
-// every Nth milling frame, to set beside the incremental update.
+// frame that long). And the brute-force variant of a milling frame: the
+// renderer compiled afresh against a new scene over the milled volumes (#3
+// builds its point shells again from the voxels), on every Nth milling frame,
+// to set beside the incremental update.
 #include <string>
 #include <vector>
 
