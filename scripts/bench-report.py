@@ -206,7 +206,7 @@ w("Our figure is the compute time of one renderer step on the tooth phantom, on 
   "*Control*: constant work as long as the median frame, same run (see above).\n")
 w("| algorithm | resolution | grid | pose | mean (µs) | p50 (µs) | p99 (µs) | control p99 (µs) | max (µs) | equivalent rate (kHz) | contacts (min–max) | paper (ms per frame) |")
 w("|---|---|---|---|---|---|---|---|---|---|---|---|")
-paper = {("LineProxyRenderer", "vertexCount=51"): "1.02 (50 vertices)", ("LineProxyRenderer", "vertexCount=1001"): "1.84 (1,000 vertices)",
+paper = {("LineProxyRenderer", "vertexCount=51"): "1.02 (50 vertices)", ("LineProxyRenderer", "vertexCount=1000"): "1.84 (1,000 vertices)",
          ("SurfacePointRenderer", "slices=20"): "1.05 (184 points)", ("SurfacePointRenderer", "slices=100"): "1.61",
          ("BarbicRenderer", "pointShellScale=1"): "7.87 (72,326 points, 127 Hz)",
          ("BarbicRenderer", "pointShellScale=2"): "1.97 (18,549 points, 507 Hz)",
