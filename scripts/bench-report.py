@@ -133,10 +133,16 @@ def ft(rend, phase, res="default"):
 w("Frame times are the §8.2 procedure's (the default lesson replayed in simulated time, every frame on the haptic "
   "thread's CPU clock: `millsim bench procedure`, section below); goal p99 ≤ 50 µs and worst ≤ 250 µs. The gentle "
   "§8.1 pose's p99 is kept beside them.\n")
-w("| algorithm | §8.2 frames p99 / worst (µs) | §8.2 milling frames p99 / worst (µs) | §8.1 gentle pose p99 (µs) | force error RMS (h = 0.1 mm) | "
+physical_rows = optional_csv("physical.csv")
+def phys(rend):
+    for r in physical_rows:
+        if r["renderer"] == rend and r["scene"] == "all" and abs(num(r["h_mm"]) - 0.1) < 1e-9:
+            return r
+    return None
+w("| algorithm | §8.2 frames p99 / worst (µs) | §8.2 milling frames p99 / worst (µs) | §8.1 gentle pose p99 (µs) | force error RMS, physical reference / own law (h = 0.1 mm) | direction error RMS, physical (°) | "
   "torque error RMS | largest stable stiffness, measured arm (× default) | highest safe speed through plates "
   "(1/2/4 voxels, 1 mm) | passivity (CI grips) | §8.2 score (lower is better) |")
-w("|---|---|---|---|---|---|---|---|---|---|")
+w("|---|---|---|---|---|---|---|---|---|---|---|")
 paper_res = {"LineProxyRenderer": "vertexCount=51", "SurfacePointRenderer": "slices=20", "BarbicRenderer": "pointShellScale=3"}
 for rend in renderers:
     rr = rate_row(rend, paper_res.get(rend, "default"))
@@ -154,7 +160,8 @@ for rend in renderers:
     w(f"| {rend} | {fmt(num(fa['p99_us'])) + ' / ' + fmt(num(fa['max_us'])) if fa else '–'} | "
       f"{fmt(num(fm['p99_us'])) + ' / ' + fmt(num(fm['max_us'])) if fm else '–'} | "
       f"{fmt(num(rr['p99_us'])) + ' (' + paper_res.get(rend) + ')' if rr else '–'} | "
-      f"{fmt(num(d[0]['force_rms'])) if d else '–'} | {fmt(num(d[0]['torque_rms'])) if d and edge else '– (not modelled)'} | {zs} | {speeds} | "
+      f"{(fmt(num(phys(rend)['force_rms'])) + ' / ') if phys(rend) else ''}{fmt(num(d[0]['force_rms'])) if d else '–'} | "
+      f"{fmt(num(phys(rend)['dir_rms_deg'])) if phys(rend) else '–'} | {fmt(num(d[0]['torque_rms'])) if d and edge else '– (not modelled)'} | {zs} | {speeds} | "
       f"{'all pass' if not fails else str(len(fails)) + ' of ' + str(len([p for p in scen if p[0] == rend])) + ' runs fail (known issues below)'} | "
       f"{total_score(rend) or '–'} |")
 w("")
