@@ -388,7 +388,7 @@ void addBenchCommand(CLI::App& app, int& result) {
   rates->add_option("--renderer", r->renderer, "Renderer type")->required();
   rates->add_option("--field", r->field, "Resolution field to set, e.g. vertexCount or slices");
   rates->add_option("--values", r->values, "Values of --field, e.g. 51,101,251")->delimiter(',');
-  rates->add_option("--frames", r->frames, "Frames timed per value (default 3000)");
+  rates->add_option("--frames", r->frames, "Frames timed per value (default 3000)")->check(CLI::Range(1L, 100000000L));
   rates->add_flag("--fine", r->fine, "8x the voxels: the phantom at 512x512x352 with 0.05 mm voxels");
   rates->add_option("--pose", r->pose,
                     "gentle: the burr 0.3 mm into the unmilled surface; deep: 0.3 mm into the bottom of a 2.5 mm "

@@ -207,7 +207,7 @@ glm::dvec3 ProxyPoint::projectToSurface(const ProxyField& field, glm::dvec3 p, d
     if (!(gg > 0.0) || !std::isfinite(gg)) break;
     glm::dvec3 step = -(s / gg) * g;
     const double len = glm::length(step);
-    if (len < 1e-3 * maxStep) break;  // on the zero set to 0.1 µm at 0.1 mm voxels
+    if (len < 1e-3 * maxStep) break;  // on the zero set to 0.2 µm at 0.1 mm voxels
     if (len > maxStep) step *= maxStep / len;
     p += step;
   }

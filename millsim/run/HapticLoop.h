@@ -172,13 +172,13 @@ public:
 
 private:
   void frame(double t, double dt, double periodUs);
-  // Everything after reading the device: live fields, swap, step, milling,
   // When a frame started, on the wall and the thread's CPU clock (timing).
   struct FrameStart {
     std::chrono::steady_clock::time_point wall;
     double cpuUs = 0.0;
   };
   FrameStart frameStart() const;
+  // Everything after reading the device: live fields, swap, step, milling,
   // safety, output, record.
   void advance(double t, double dt, double periodUs, const Pose& device, bool button, FrameStart begin);
   // After the device's stop(): logs the zero output it received.
