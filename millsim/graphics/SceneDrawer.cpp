@@ -155,7 +155,10 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
     program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
     program_->setLights(scene_.volumes[i].lights);
-    meshes_[i]->draw(levelOfDetail(i, height));
+    const int level = levelOfDetail(i, height);
+    meshes_[i]->draw(level);
+    if (drawnLevels_.size() < meshes_.size()) drawnLevels_.resize(meshes_.size(), 0);
+    drawnLevels_[i] = level;
   }
   std::vector<const DrawShape*> seeThrough;
   for (const DrawShape& s : scene_.shapes)
@@ -328,8 +331,9 @@ std::vector<float> SceneDrawer::readDepth(int width, int height) {
 
 DrawStats SceneDrawer::stats() const {
   DrawStats s;
-  for (const auto& m : meshes_) {
-    s.triangles += m->triangles();
+  for (std::size_t i = 0; i < meshes_.size(); ++i) {
+    const auto& m = meshes_[i];
+    s.triangles += m->triangles(i < drawnLevels_.size() ? drawnLevels_[i] : 0);
     s.chunks += m->chunks();
     s.chunkUploads += m->uploads();
   }

@@ -50,7 +50,7 @@ struct ToolView {
 };
 
 struct DrawStats {
-  std::size_t triangles = 0;     // of all volume meshes
+  std::size_t triangles = 0;     // of all volume meshes, at the level each was last drawn (level 0 before a draw)
   std::size_t chunks = 0;        // chunk meshes on the GPU
   std::size_t chunkUploads = 0;  // since construction (an incremental update adds only the chunks it touched)
 };
@@ -131,6 +131,7 @@ private:
   std::unique_ptr<GlMesh> head_;
   glm::vec2 headRadii_{-1.f};
   std::vector<std::unique_ptr<VolumeMesh>> meshes_;
+  std::vector<int> drawnLevels_;  // the level of detail each mesh was last drawn at
   bool levelOfDetail_ = true;
   struct CachedMesh {
     std::shared_ptr<const TriangleMesh> source;  // keeps the key alive
