@@ -36,6 +36,27 @@ std::ofstream openOut(const std::string& path) {
   return f;
 }
 
+// Rows appended to `path` (none if empty); the header only when the file is new.
+std::ofstream appendCsv(const std::string& path, const char* header) {
+  std::ofstream csv;
+  if (path.empty()) return csv;
+  const bool fresh = !std::ifstream(path).good();
+  csv.open(path, std::ios::app);
+  if (!csv) throw std::runtime_error("cannot write " + path);
+  if (fresh) csv << header;
+  return csv;
+}
+
+// One renderer configuration of a --field/--values sweep ("" is the defaults),
+// and its label ("default" or "field=value").
+RendererSpec sweepSpec(const std::string& type, const std::string& field, const std::string& value,
+                       std::string& label) {
+  RendererSpec spec{type, {}};
+  label = "default";
+  if (!field.empty() && !value.empty()) spec.fields.push_back({field, value}), label = field + "=" + value;
+  return spec;
+}
+
 struct AccuracyArgs {
   std::vector<std::string> renderers;
   std::vector<double> voxelMm{0.2, 0.1, 0.05};
@@ -206,21 +227,14 @@ struct RatesArgs {
 };
 
 int runRates(const RatesArgs& a) {
-  std::ofstream csv;
-  if (!a.csv.empty()) {
-    const bool fresh = !std::ifstream(a.csv).good();
-    csv.open(a.csv, std::ios::app);
-    if (!csv) throw std::runtime_error("cannot write " + a.csv);
-    if (fresh)
-      csv << "renderer,resolution,frames,mean_us,p50_us,p99_us,rate_hz,max_contacts,grid,pose,p999_us,max_us,"
-             "wall_p99_us,preempted,control_p50_us,control_p99_us,control_p999_us,min_contacts\n";
-  }
+  std::ofstream csv =
+      appendCsv(a.csv, "renderer,resolution,frames,mean_us,p50_us,p99_us,rate_hz,max_contacts,grid,pose,p999_us,"
+                       "max_us,wall_p99_us,preempted,control_p50_us,control_p99_us,control_p999_us,min_contacts\n");
   const RatePose pose = a.pose == "deep" ? RatePose::Deep : RatePose::Gentle;
   std::vector<std::string> values = a.values.empty() ? std::vector<std::string>{""} : a.values;
   for (const std::string& v : values) {
-    RendererSpec spec{a.renderer, {}};
-    std::string label = "default";
-    if (!a.field.empty() && !v.empty()) spec.fields.push_back({a.field, v}), label = a.field + "=" + v;
+    std::string label;
+    const RendererSpec spec = sweepSpec(a.renderer, a.field, v, label);
     const RateResult r = measureRate(spec, a.frames, label, a.fine, pose);
     std::cout << r.renderer << " " << r.resolution << " on " << r.grid << ", " << r.pose << " pose: CPU mean "
               << fmt(r.meanUs) << " us, p50 " << fmt(r.p50Us) << " us, p99 " << fmt(r.p99Us) << " us, p99.9 "
@@ -247,22 +261,15 @@ struct ProcedureArgs {
 };
 
 int runProcedure(const ProcedureArgs& a) {
-  std::ofstream csv;
-  if (!a.csv.empty()) {
-    const bool fresh = !std::ifstream(a.csv).good();
-    csv.open(a.csv, std::ios::app);
-    if (!csv) throw std::runtime_error("cannot write " + a.csv);
-    if (fresh)
-      csv << "renderer,resolution,phase,frames,p50_us,p99_us,p999_us,max_us,control_p99_us,control_p999_us,"
-             "brute_samples,brute_p50_us,brute_max_us,preempted,max_contacts,removed_mm3\n";
-  }
+  std::ofstream csv =
+      appendCsv(a.csv, "renderer,resolution,phase,frames,p50_us,p99_us,p999_us,max_us,control_p99_us,control_p999_us,"
+                       "brute_samples,brute_p50_us,brute_max_us,preempted,max_contacts,removed_mm3\n");
   const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
   const std::vector<std::string> values = a.values.empty() ? std::vector<std::string>{""} : a.values;
   for (const std::string& type : types) {
     for (const std::string& v : values) {
-      RendererSpec spec{type, {}};
-      std::string label = "default";
-      if (!a.field.empty() && !v.empty()) spec.fields.push_back({a.field, v}), label = a.field + "=" + v;
+      std::string label;
+      const RendererSpec spec = sweepSpec(type, a.field, v, label);
       const ProcedureResult r = measureProcedure(spec, label, a.scene, a.trajectory, a.bruteEvery);
       std::cout << r.renderer << " " << r.resolution << ": removed " << fmt(r.removedMm3) << " mm3, "
                 << r.maxContacts << " contacts at most, " << r.preempted << " frames lost the CPU\n";

@@ -38,14 +38,19 @@ void BM_SampleRandom(benchmark::State& state) {
 BENCHMARK(BM_SampleRandom);
 
 // Points in a small cluster near the occlusal surface, as a tool's samples are.
-void BM_SampleNearSurface(benchmark::State& state) {
-  const auto& v = phantom();
-  VolumeSampler s(v);
+std::vector<glm::dvec3> nearSurfacePoints(const VoxelVolume& v) {
   std::mt19937 rng(2);
   std::normal_distribution<double> n(0.0, 10.0);
   const glm::dvec3 c = v.localToIndex({0.0, 8.5e-3, 0.0});
   std::vector<glm::dvec3> pts(4096);
   for (auto& p : pts) p = c + glm::dvec3(n(rng), n(rng), n(rng));
+  return pts;
+}
+
+void BM_SampleNearSurface(benchmark::State& state) {
+  const auto& v = phantom();
+  VolumeSampler s(v);
+  const std::vector<glm::dvec3> pts = nearSurfacePoints(v);
   for (auto _ : state)
     for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
   state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
@@ -58,11 +63,7 @@ BENCHMARK(BM_SampleNearSurface);
 void BM_SampleNearSurfaceEightLookups(benchmark::State& state) {
   const auto& v = phantom();
   VolumeSampler s(v);
-  std::mt19937 rng(2);
-  std::normal_distribution<double> n(0.0, 10.0);
-  const glm::dvec3 c = v.localToIndex({0.0, 8.5e-3, 0.0});
-  std::vector<glm::dvec3> pts(4096);
-  for (auto& p : pts) p = c + glm::dvec3(n(rng), n(rng), n(rng));
+  const std::vector<glm::dvec3> pts = nearSurfacePoints(v);
   for (auto _ : state)
     for (const auto& p : pts) {
       const int i = int(std::floor(p.x)), j = int(std::floor(p.y)), k = int(std::floor(p.z));

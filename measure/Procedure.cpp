@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "millsim/core/NodeRegistry.h"
@@ -23,7 +24,7 @@ const char* const kPhases[] = {"free", "contact", "lean", "milling", "all"};
 
 double tiltDeg(const glm::dquat& q) {
   const glm::dvec3 axis = q * glm::dvec3(0.0, 1.0, 0.0);
-  return std::acos(std::clamp(axis.y, -1.0, 1.0)) * 180.0 / 3.141592653589793;
+  return std::acos(std::clamp(axis.y, -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
 std::size_t phaseOf(const FrameRecord& r) {
