@@ -137,18 +137,21 @@ int runAccuracy(const AccuracyArgs& a) {
 struct PhysicalArgs {
   std::vector<std::string> renderers;
   std::vector<double> voxelMm{0.2, 0.1, 0.05};
+  double sweepVoxelMm = 0.0;  // > 0: also each resolution field's values at this voxel size
   bool quick = false, ownLaw = true;
   std::string csv, md;
 };
 
 // Each renderer at its defaults against the physical reference (measure/Physical.h),
-// with today's own-law figure (bench accuracy's "all" row) beside it.
+// with today's own-law figure (bench accuracy's "all" row) beside it; with
+// --sweep-voxel, also over each resolution field (the run time against
+// physical error that docs/results.md plots).
 int runPhysical(const PhysicalArgs& a) {
   PhysicalConfig cfg;
   AccuracyConfig own;
   if (a.quick) cfg.phases = 1, own.depths = 3, own.tiltsDeg = {0, 30, 60}, own.phases = 1, own.settleFrames = 10;
   const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
-  std::vector<PhysicalRow> rows;
+  std::vector<PhysicalRow> rows, sweepRows;
   std::map<std::pair<std::string, double>, AccuracyRow> ownRows;
   std::ostringstream orders;
   auto pct = [](double v) { return fmt(100.0 * v, 3); };
@@ -165,6 +168,18 @@ int runPhysical(const PhysicalArgs& a) {
       rows.insert(rows.end(), r.begin(), r.end());
       if (a.ownLaw) ownRows[{type, mm}] = measureAccuracy({type, {}}, mm * 1e-3, own).back();
     }
+    if (a.sweepVoxelMm > 0.0) {
+      const auto probe = makeRenderer({type, {}});
+      for (const auto& [field, values] : probe->traits().resolutionSweeps)
+        for (const std::string& v : values) {
+          const std::string label = field + "=" + v;
+          auto r = measurePhysical({type, {{field, v}}}, a.sweepVoxelMm * 1e-3, cfg);
+          for (PhysicalRow& row : r) row.resolution = label;
+          std::cerr << type << " " << label << " h=" << a.sweepVoxelMm << "mm: force " << pct(r.back().forceRms)
+                    << " %, direction " << fmt(r.back().directionRms) << " deg, p50 " << fmt(r.back().p50Us) << " us\n";
+          sweepRows.insert(sweepRows.end(), r.begin(), r.end());
+        }
+    }
     orders << "| " << type << " | " << fmt(convergenceOrder(hs, fe), 2) << " | " << fmt(convergenceOrder(hs, de), 2)
            << " | " << fmt(convergenceOrder(hs, te), 2) << " | " << fmt(convergenceOrder(hs, ae), 2) << " | "
            << fmt(convergenceOrder(hs, dr), 2) << " |\n";
@@ -179,6 +194,7 @@ int runPhysical(const PhysicalArgs& a) {
         f << "," << it->second.forceRms << "," << it->second.directionRms << "," << it->second.torqueRms << "\n";
       else f << ",,,\n";
     }
+    for (const auto& r : sweepRows) f << toCsv(r) << ",,,\n";
   }
   double worstViolation = 0.0;
   bool converged = true;
@@ -209,6 +225,16 @@ int runPhysical(const PhysicalArgs& a) {
   md << "\nConvergence order p in h (error ∝ h^p; drawn pose in mm):\n\n| renderer | force | direction | torque | "
         "shaft arm | drawn |\n|---|---|---|---|---|---|\n"
      << orders.str();
+  if (!sweepRows.empty()) {
+    md << "\nResolution sweep, h = " << fmt(a.sweepVoxelMm) << " mm (all scenes):\n\n| renderer | resolution | force RMS (%) | "
+          "direction RMS (°) | torque RMS | p50 (µs) | p99 (µs) |\n|---|---|---|---|---|---|---|\n";
+    for (const auto& r : sweepRows)
+      if (r.scene == "all")
+        md << "| " << r.renderer << " | " << r.resolution << " | " << pct(r.forceRms) << " | " << fmt(r.directionRms)
+           << " | " << fmt(r.torqueRms) << " | " << fmt(r.p50Us) << " | " << fmt(r.p99Us) << " |\n";
+  }
+  for (const auto& r : sweepRows)
+    worstViolation = std::max(worstViolation, r.refViolation), converged = converged && r.refConverged;
   md << "\nReference: " << (converged ? "every pose converged" : "SOME POSES MISSED THEIR TOLERANCE")
      << ", largest remaining penetration " << fmt(worstViolation, 2) << " m.\n";
   if (!a.md.empty()) openOut(a.md) << md.str();
@@ -384,6 +410,9 @@ void addBenchCommand(CLI::App& app, int& result) {
   auto ph = std::make_shared<PhysicalArgs>();
   phys->add_option("--renderer", ph->renderers, "Renderer type (repeatable; default: every registered one)");
   phys->add_option("--voxel-sizes", ph->voxelMm, "Voxel sizes h in mm (default 0.2,0.1,0.05)")->delimiter(',');
+  phys->add_option("--sweep-voxel", ph->sweepVoxelMm,
+                   "Also sweep each renderer's resolution fields at this voxel size in mm (e.g. 0.1; default: no sweep)")
+      ->check(CLI::Range(0.01, 1.0));
   phys->add_flag("--quick", ph->quick, "One sub-voxel phase, and the quick own-law run");
   phys->add_flag("!--no-own-law", ph->ownLaw, "Skip the own-law column (bench accuracy's figure)");
   phys->add_option("--csv", ph->csv, "Write every row (per scene and 'all') as CSV");

@@ -63,7 +63,8 @@ PhysicalRow summarise(const std::string& type, double h, const std::string& scen
   r.directionRms = rms(s.direction), r.directionP95 = percentile(s.direction, 0.95);
   r.missed = s.pressed > 0 ? double(s.missed) / s.pressed : kNaN;
   r.torqueRms = rms(s.torque), r.armRms = rms(s.arm), r.armRelRms = rms(s.armRel), r.lineRms = rms(s.line);
-  r.drawnRms = rms(s.drawn), r.drawnDegRms = rms(s.drawnDeg), r.p99Us = percentile(s.us, 0.99);
+  r.drawnRms = rms(s.drawn), r.drawnDegRms = rms(s.drawnDeg);
+  r.p50Us = percentile(s.us, 0.5), r.p99Us = percentile(s.us, 0.99);
   r.refViolation = s.violation, r.refConverged = s.converged;
   return r;
 }
@@ -131,17 +132,17 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
 }
 
 std::string physicalCsvHeader() {
-  return "renderer,h_mm,scene,poses,felt_k,felt_kr,force_rms,force_p95,dir_rms_deg,dir_p95_deg,missed,torque_rms,"
-         "arm_rms_mm,arm_rel_rms,line_rms_mm,drawn_rms_vox,drawn_rms_deg,p99_us,ref_violation_m,ref_converged";
+  return "renderer,resolution,h_mm,scene,poses,felt_k,felt_kr,force_rms,force_p95,dir_rms_deg,dir_p95_deg,missed,torque_rms,"
+         "arm_rms_mm,arm_rel_rms,line_rms_mm,drawn_rms_vox,drawn_rms_deg,p50_us,p99_us,ref_violation_m,ref_converged";
 }
 
 std::string toCsv(const PhysicalRow& r) {
   std::ostringstream o;
   o.precision(4);
-  o << r.renderer << "," << r.h * 1e3 << "," << r.scene << "," << r.poses << "," << r.feltStiffness << ","
+  o << r.renderer << "," << r.resolution << "," << r.h * 1e3 << "," << r.scene << "," << r.poses << "," << r.feltStiffness << ","
     << r.angularStiffness << "," << r.forceRms << "," << r.forceP95 << "," << r.directionRms << ","
     << r.directionP95 << "," << r.missed << "," << r.torqueRms << "," << r.armRms << "," << r.armRelRms << "," << r.lineRms << ","
-    << r.drawnRms << "," << r.drawnDegRms << "," << r.p99Us << "," << r.refViolation << ","
+    << r.drawnRms << "," << r.drawnDegRms << "," << r.p50Us << "," << r.p99Us << "," << r.refViolation << ","
     << (r.refConverged ? 1 : 0);
   return o.str();
 }

@@ -19,6 +19,7 @@ struct PhysicalConfig {
 
 struct PhysicalRow {
   std::string renderer;
+  std::string resolution = "default";  // "default", or the swept "field=value"
   double h = 0.0;            // m
   std::string scene;         // a scene name or "all"
   int poses = 0;
@@ -36,7 +37,7 @@ struct PhysicalRow {
   double lineRms = 0;
   double drawnRms = 0;       // voxels: drawn burr centre against the constrained one
   double drawnDegRms = 0;    // degrees: drawn orientation against the constrained one
-  double p99Us = 0;          // per-frame compute time over the held frames
+  double p50Us = 0, p99Us = 0;  // per-frame compute time over the held frames
   double refViolation = 0;   // m: the reference's largest remaining penetration
   bool refConverged = true;  // every reference pose met its tolerance
 };
