@@ -28,29 +28,18 @@ template <class Fine> double trilinear(const Fine& fine, const glm::dvec3& p) {
 // field is not linear along a diagonal: at a convex edge (a corner voxel
 // whose face neighbours sit at the iso-value) it is quadratic, and the
 // interpolated point lay 0.3 voxel inside the edge, which the trilinear
-// iso-surface keeps sharp. A burr or shaft on an edge then felt the surface
-// 0.03 mm late at h = 0.1 mm: 50 % force error at the physical suite's
-// 0.05 mm depth (issue 14). A few Illinois (regula falsi) steps on the field
-// itself; exact on a flat face, where the field is linear along the normal.
+// iso-surface keeps sharp (issue 14). One regula-falsi step on the field
+// itself: sample at the interpolated point and interpolate again in the half
+// that holds the crossing. More steps changed the physical suite's figures by
+// under 0.3 % and cost a milling frame 10 µs p50 each (the shell update).
+// Exact on a flat face, where the field is linear along the normal.
 template <class Fine>
 glm::dvec3 refine(const Fine& fine, double iso, glm::dvec3 a, double va, glm::dvec3 b, double vb) {
-  constexpr int kRefineSteps = 4;
-  int side = 0;
-  for (int i = 0; i < kRefineSteps; ++i) {
-    const double t = (va - iso) / (va - vb);
-    const glm::dvec3 m = a + (b - a) * t;
-    const double vm = trilinear(fine, m);
-    if (vm > iso) {
-      a = m, va = vm;
-      if (side == 1) vb = iso + 0.5 * (vb - iso);  // Illinois: halve the stale end
-      side = 1;
-    } else {
-      b = m, vb = vm;
-      if (side == -1) va = iso + 0.5 * (va - iso);
-      side = -1;
-    }
-    if (vm == iso || !(va > vb)) return m;
-  }
+  const glm::dvec3 m = a + (b - a) * ((va - iso) / (va - vb));
+  const double vm = trilinear(fine, m);
+  if (vm > iso) a = m, va = vm;
+  else if (vm < iso) b = m, vb = vm;
+  else return m;
   return a + (b - a) * ((va - iso) / (va - vb));
 }
 
