@@ -144,6 +144,9 @@ private:
       auto coarse = [&] { return &scene.pointShell(i, 2 * p_.scale); };
       const auto& v = *s.placement;
       const Obb box = toolBox(v, tool_, 0.0);
+      // Volume-local point to tool frame in one affine map (for the cheap reject only).
+      const glm::dmat3 toTool = Rt * glm::dmat3(v.localToWorld);
+      const glm::dvec3 toToolOrigin = Rt * (glm::dvec3(v.localToWorld[3]) - tool_.position);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
       const PointShell* shell = s.fine;
       if (p_.culling && shell->countCandidates(overlaps) > p_.maxTested) shell = coarse(), flags |= kFlagCoarseFallback;
@@ -154,12 +157,27 @@ private:
         bool full = false;
         auto test = [&](const ShellPoint& sp) {
           if (full) return;
+          // Cheap exact reject first: outside the tool's hull (its bounding
+          // cylinder about the axis, narrowed to the shaft above the head; a
+          // round burr: its ball and its shaft) the exact distance is
+          // positive. Most candidates of a fine shell end here (at scale 1 in
+          // the §8.2 procedure, 850 of 930 a frame). Not for the sampled
+          // grid, which rounds the creases and can be negative just outside.
+          if (!p_.sampled) {
+            const glm::dvec3 c = toTool * glm::dvec3(sp.position) + toToolOrigin;
+            const double radial = c.x * c.x + c.z * c.z;
+            if (radial > hull_.outer2 || c.y < hull_.lo || c.y > hull_.hi ||
+                (c.y > hull_.headTop && radial > hull_.shaft2))
+              return;
+            if (hull_.round && radial + c.y * c.y > hull_.outer2 && (c.y < -hull_.eps || radial > hull_.shaft2)) return;
+          }
           const glm::dvec3 pw = glm::dvec3(v.localToWorld * glm::dvec4(glm::dvec3(sp.position), 1.0));
           const glm::dvec3 r = pw - tool_.position;
           const glm::dvec3 q = Rt * r;
-          const double d = p_.sampled ? sdf_.sampledDistance(q) : sdf_.distance(q);
-          if (!(d < 0.0)) return;
+          // The hull test leaves almost only contacts: one analytic evaluation, not a distance first.
+          if (p_.sampled && !(sdf_.sampledDistance(q) < 0.0)) return;
           const SdfSample sm = p_.sampled ? sdf_.sampled(q) : sdf_.analytic(q, true);
+          if (!(sm.distance < 0.0)) return;
           addContact(acc_, r, sm.distance, R * sm.gradient, R * sm.hessian * Rt, k);
           full = ++n >= int(p_.maxContacts);
         };
@@ -190,8 +208,22 @@ private:
     return false;
   }
 
+  // The tool's hull in its own frame, squared radii with a margin, so that the
+  // cheap reject never drops a point the exact distance would keep.
+  struct Hull {
+    double outer2, shaft2, lo, hi, headTop, eps;
+    bool round;  // the head is the ball of radius √outer2 (less the margin)
+  };
+  static Hull hullOf(const ToolSdf& sdf) {
+    const double eps = 1e-9;  // m: far above the rounding of the two transforms
+    const double outer = sdf.boxHi().x + eps, shaft = sdf.tool().shaftRadius + eps;
+    return {outer * outer, shaft * shaft, sdf.boxLo().y - eps, sdf.boxHi().y + eps, -sdf.boxLo().y + eps, eps,
+            sdf.tool().round() && sdf.tool().tipRadius >= sdf.tool().shaftRadius};
+  }
+
   BarbicParams p_;
   ToolSdf sdf_;
+  Hull hull_ = hullOf(sdf_);
   double reach_;
   double reachTip_;  // the burr's radius: its leading point is this far ahead of its centre
   std::vector<Shells> shells_;

@@ -20,8 +20,10 @@ public:
   RendererTraits traits() const override;
   FrameCostEstimate estimateFrameCost(const FrameCostContext& context) const override;
 
-  SFInt32 pointShellScale{this, "pointShellScale", Access::InitializeOnly, 3,
-                          "Point shell scaling factor: 1 is every surface voxel; the paper chose 3.", Range::closed(1, 8)};
+  SFInt32 pointShellScale{this, "pointShellScale", Access::InitializeOnly, 1,
+                          "Point shell scaling factor: 1 is every surface voxel (the default: a burr on a coarser "
+                          "shell rests on a few points and slides into the pocket between them); the paper chose 3.",
+                          Range::closed(1, 8)};
   SFFloat contactStiffness{this, "contactStiffness", Access::InitializeOnly, 5000.f,
                            "Penalty stiffness per shell point at scale 1 (N/m); a point of a scale-s shell stands "
                            "for s² fine points and gets s² times this.",

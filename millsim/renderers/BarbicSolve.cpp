@@ -38,10 +38,14 @@ void addContact(Wrench6& acc, const glm::dvec3& rg, double d, const glm::dvec3& 
   acc.K.block<3, 3>(0, 3) += Kxt;
   acc.K.block<3, 3>(3, 0) += R * Kxx - skew(F);
   acc.K.block<3, 3>(3, 3) += R * Kxt;
-  // Gauss–Newton part k·J·Jᵀ with J = ∂d/∂(x, θ) = −(n, r × n).
-  Vec6 J;
-  J << n, rn;
-  acc.Kgn.selfadjointView<Eigen::Lower>().rankUpdate(J, k);
+  // Gauss–Newton part k·J·Jᵀ with J = ∂d/∂(x, θ) = −(n, r × n), its lower
+  // triangle only (what solveStep reads), by hand: Eigen's rankUpdate was a
+  // tenth of a contact's cost at pointShellScale 1.
+  const double J[6] = {n.x(), n.y(), n.z(), rn.x(), rn.y(), rn.z()};
+  for (int c = 0; c < 6; ++c) {
+    const double kj = k * J[c];
+    for (int r6 = c; r6 < 6; ++r6) acc.Kgn(r6, c) += kj * J[r6];
+  }
 }
 
 glm::dvec3 rotationError(const glm::dquat& tool, const glm::dquat& device) {

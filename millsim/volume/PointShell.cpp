@@ -23,6 +23,26 @@ template <class Fine> double trilinear(const Fine& fine, const glm::dvec3& p) {
   return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
 }
 
+// The iso-crossing between a (value va > iso) and b (vb <= iso) on the
+// trilinear field. One linear interpolation was the first choice, but the
+// field is not linear along a diagonal: at a convex edge (a corner voxel
+// whose face neighbours sit at the iso-value) it is quadratic, and the
+// interpolated point lay 0.3 voxel inside the edge, which the trilinear
+// iso-surface keeps sharp (issue 14). One regula-falsi step on the field
+// itself: sample at the interpolated point and interpolate again in the half
+// that holds the crossing. More steps changed the physical suite's figures by
+// under 0.3 % and cost a milling frame 10 µs p50 each (the shell update).
+// Exact on a flat face, where the field is linear along the normal.
+template <class Fine>
+glm::dvec3 refine(const Fine& fine, double iso, glm::dvec3 a, double va, glm::dvec3 b, double vb) {
+  const glm::dvec3 m = a + (b - a) * ((va - iso) / (va - vb));
+  const double vm = trilinear(fine, m);
+  if (vm > iso) a = m, va = vm;
+  else if (vm < iso) b = m, vb = vm;
+  else return m;
+  return a + (b - a) * ((va - iso) / (va - vb));
+}
+
 }  // namespace
 
 // A coarse point starts at the centroid of its block's material, not at the
@@ -223,13 +243,24 @@ glm::dvec3 PointShell::ontoSurface(const Fine& fine, glm::dvec3 at, const glm::d
   const glm::dvec3 step = outward * std::min({vs.x, vs.y, vs.z}) / vs;  // one (smallest) voxel, in index units
   double v0 = trilinear(fine, at);
   if (!(v0 > iso_)) return at;  // a sliver whose centroid samples outside: leave it
-  for (int i = 0; i < scale_; ++i) {
-    const double v1 = trilinear(fine, at + step);
-    if (v1 <= iso_) return at + step * ((v0 - iso_) / (v0 - v1));
-    at += step, v0 = v1;
+  // Up to s voxels along each axis (a box, not a ball: a corner voxel's point
+  // walks a diagonal, √2–√3 voxels to a convex edge; s voxels along the
+  // normal stopped it short and rounded every edge by 0.4 voxel, so a burr
+  // on an edge at h = 0.1 mm felt it 0.04 mm late; issue 14). The box is
+  // what the shell update's stencil covers (one coarse voxel around).
+  const glm::dvec3 lo = at - double(scale_), hi = at + double(scale_);
+  const double perStep = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
+  double travelled = 0.0;  // the largest per-axis distance from the start so far
+  for (int i = 0; travelled < double(scale_) && i < 2 * scale_ + 2; ++i) {  // at most ⌈s·√3⌉ steps, and a rounding
+    const double frac = std::min(1.0, (double(scale_) - travelled) / perStep);
+    const glm::dvec3 next = frac == 1.0 ? at + step : glm::clamp(at + step * frac, lo, hi);
+    const double v1 = trilinear(fine, next);
+    if (v1 <= iso_) return refine(fine, iso_, at, v0, next, v1);
+    at = next, v0 = v1, travelled += perStep * frac;
   }
-  return at;  // still inside after s voxels: as far out as the block allows
+  return at;  // still inside s voxels out: as far as the block's stencil allows
 }
+
 
 template <class Fine>
 int PointShell::makePoints(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint out[2]) const {
@@ -317,7 +348,7 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   if (glm::any(glm::greaterThan(cLo, cHi))) return true;
   const glm::ivec3 eLo = cLo - 1, eDim = cHi - cLo + 3;
   // F reaches one voxel further each way: the iso-surface search of a point
-  // walks up to s voxels from its block and reads one beyond (trilinear).
+  // walks up to s voxels (per axis) from its block and reads one beyond (trilinear).
   const glm::ivec3 fLo = eLo * scale_ - 1, fDim = eDim * scale_ + 2;
   const std::size_t fineCount = std::size_t(fDim.x) * fDim.y * fDim.z;
   if (fineCount > fineScratch_.size() || std::size_t(eDim.x) * eDim.y * eDim.z > coarseScratch_.size()) return false;

@@ -184,7 +184,7 @@ private:
   // material, in fine index units.
   template <class Fine> glm::dvec3 materialCentre(const Fine& fine, int I, int J, int K) const;
   // From `at` (fine index units, inside) out along `outward` to the iso-surface
-  // of the trilinear fine field, at most s fine voxels away.
+  // of the trilinear fine field, at most s fine voxels away along each axis.
   template <class Fine> glm::dvec3 ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward) const;
   // Recomputes bucket b's points from the voxels into merged_; returns how many.
   template <class Accessor> std::size_t computeBucket(const Accessor& acc, int b);

@@ -104,12 +104,6 @@ protected:
   static constexpr KnownMiss kKnownMisses[] = {
       {"SurfacePointRenderer", "slab sideways force", 0.3,
        "its 24 sphere points are not symmetric about the shaft (docs/stability.md)"},
-      {"BarbicRenderer", "slab sideways force", 0.7,
-       "at its default pointShellScale 3 the burr rests on 3-4 coarse shell points 0.3 mm apart and, frictionless, "
-       "slides into the pocket between them (0.56 measured at 0.3 mm; within 0.05 at scales 1 and 2)"},
-      {"BarbicRenderer", "wall off-axis torque", 0.4,
-       "at its default pointShellScale 3 the coarse shell points on the wall are not symmetric about the shaft's "
-       "plane (0.26 measured; within 0.1 at scales 1 and 2)"},
   };
   // The bound `ratio` must meet for this renderer; prints what a known miss excuses.
   double bound(const char* check, double strict, double ratio) const {

@@ -308,11 +308,11 @@ TEST(Replay, LineProxyDrawnShaftStaysWithTheDeviceWhileMillingStraightDown) {
   EXPECT_LT(worst, 5.0) << "the drawn shaft left the device's by " << worst << "° at t = " << worstT << " s";
 }
 
-// Algorithm #3 at its default pointShellScale 3 must mill the §8.2 hole like
-// the others. Coarse shell points used to sit at their block's centre, where
-// a point could outlive the material it stood for: the burr rested on one in
-// the middle of its own cut and milling stalled at 0.79 mm³ (pointShellScale 1
-// milled 2.5 mm³).
+// Algorithm #3 at its default shell scale (1 since issue 14; this was found
+// at the paper's 3) must mill the §8.2 hole like the others. Coarse shell
+// points used to sit at their block's centre, where a point could outlive the
+// material it stood for: the burr rested on one in the middle of its own cut
+// and milling stalled at 0.79 mm³ at scale 3 (scale 1 milled 2.5 mm³).
 TEST(Replay, BarbicMillsTheHoleAtItsDefaultShellScale) {
   LoadResult r = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
   ASSERT_TRUE(r.ok()) << r.report();
