@@ -277,10 +277,10 @@ private:
       }
       // A second face more than 60° from the first (a hole's wall and bottom).
       seed(scene, c, R, contacts, n, false, [&](std::size_t i) {
-        Track t;
-        t.u = R * sphere_[i] / r_, t.t = r_;
-        const PointContact pc = burrContact(scene, c, t);
-        return add(t, pc);
+        Track face;
+        face.u = R * sphere_[i] / r_, face.t = r_;
+        const PointContact pc = burrContact(scene, c, face);
+        return add(face, pc);
       });
     }
     for (int j = 0; j < tracked_; ++j)
