@@ -41,13 +41,7 @@ double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, gl
 double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, double rho, double y0,
                       double y1, double& y, double& phi, double tGuess);
 
-// The smallest translation d of the tool with d·normal_j ≥ depth_j for every
-// contact (the tool pushed out of every contact's tangent plane, as a rigid
-// tool held at the device's orientation would be), and each contact's share
-// lambda_j ≥ 0 (d = Σ lambda_j·normal_j; 0 for a contact the others clear).
-// Contacts with no such d (pushing against each other) give the plain sum
-// Σ depth_j·normal_j. At most kMaxPointContacts contacts.
+// At most this many contacts are tracked at once (burr and shaft together).
 constexpr int kMaxPointContacts = 6;
-glm::dvec3 separatingTranslation(const PointContact* contacts, int count, double* lambda);
 
 }  // namespace millsim

@@ -168,15 +168,15 @@ private:
   // ---- the default force: the tool's deepest points (deepestPoints TRUE) ----
 
   // Every contact is a line through the tool where it is locally deepest in
-  // material (DeepestPoint.h); the force is k times the smallest translation
-  // that takes the tool out of every contact's tangent plane, the torque
-  // the moment of each contact's share. The surface points only find where
+  // material (DeepestPoint.h); each pushes k times its depth along its
+  // normal, and the torque is those pushes' moment. The surface points only find where
   // to look: each is tested on a surface grown by the largest gap between
   // points (a flat face the burr or shaft touches anywhere reaches one of
   // them). The burr's first contact starts along the sum of its points'
-  // penetrations and is then tracked; a point in material that no contact
-  // explains seeds another (a face more than 60° from the burr's first, or
-  // a shaft contact).
+  // penetrations; a point in material that no contact explains seeds another
+  // (a face more than 60° from the burr's first, or a shaft contact). Every
+  // contact is then tracked from frame to frame, also through a gap of up to
+  // a voxel, so that it comes and goes at zero depth.
   void prepareDeepest(const ToolGeometry& tool, double y0) {
     r_ = tool.tipRadius, rho_ = tool.shaftRadius, y0_ = y0, y1_ = tool.shaftLength;
     // The largest angle from any direction to its nearest sphere point, over 4000 directions.
@@ -203,7 +203,9 @@ private:
     Track found[kMaxPointContacts];
     int n = 0;
     auto add = [&](const Track& t, const PointContact& pc) {
-      if (pc.depth <= 0.0 || n == kMaxPointContacts) return false;
+      // A contact within a voxel of touching stays tracked (the same contact
+      // when it touches again, entering at depth 0).
+      if (pc.depth <= -h || n == kMaxPointContacts) return false;
       // The same contact found again, or another line into the same face: a
       // burr in its own round pit is about as deep along many lines, and
       // contacts that came and went among them would shake the hand. The
@@ -257,10 +259,17 @@ private:
       // turns continuously — also for a burr in its own round pit, where the
       // material is about as deep along many lines — and the contact's normal
       // and depth are measured where it meets the surface (sphereContact).
+      // A tracked line is searched near where it was (sphereContact's
+      // tracking mode, t < r), also when it had lifted off.
+      auto tracked = [&](Track t) {
+        t.t = std::min(t.t, 0.999 * r_);
+        return t;
+      };
       Track t;
+      int firstTracked = -1;
       for (int j = 0; j < tracked_; ++j)
         if (!track_[j].shaft) {
-          t = track_[j];  // in contact: from the last frame's first line
+          t = tracked(track_[j]), firstTracked = j;  // in contact: from the last frame's first line
           break;
         }
       if (t.u == glm::dvec3(0.0)) {
@@ -275,7 +284,15 @@ private:
         const PointContact pc = burrContact(scene, c, t);
         add(t, pc);
       }
-      // A second face more than 60° from the first (a hole's wall and bottom).
+      // Second faces more than 60° from the first (a hole's wall and bottom):
+      // last frame's again, then any new one. Found afresh each frame they
+      // came and went with the seeds, 0.07 mm deep, while the burr milled
+      // its own pit.
+      for (int j = firstTracked + 1; firstTracked >= 0 && j < tracked_; ++j)
+        if (!track_[j].shaft) {
+          Track face = tracked(track_[j]);
+          add(face, burrContact(scene, c, face));
+        }
       seed(scene, c, R, contacts, n, false, [&](std::size_t i) {
         Track face;
         face.u = R * sphere_[i] / r_, face.t = r_;
@@ -292,10 +309,32 @@ private:
       t.phi = std::atan2(v.z, v.x), t.t = rho_;
       return shaft(t);
     });
-    double lambda[kMaxPointContacts];
-    out.force = k_ * separatingTranslation(contacts, n, lambda);
-    for (int j = 0; j < n; ++j) out.torque += glm::cross(contacts[j].point - c, k_ * lambda[j] * contacts[j].normal);
-    out.contacts = n;
+    // Each contact pushes k times its own depth. Not the smallest translation
+    // out of all of them (a rigid tool's): where the burr is on one wall and
+    // the leaning shaft on the opposite rim no translation clears both, the
+    // shares grow many times the depths and every ripple of the contacts'
+    // normals came through as a jolt (1.4 N frame to frame in the §8.2
+    // lean). Faces at right angles (a corner, a hole's wall and floor) get
+    // the same push either way.
+    out.contacts = 0;
+    const PointContact* burr = nullptr;  // the burr's first contact, touching or near
+    for (int j = 0; j < n; ++j) {
+      const bool first = !found[j].shaft && !burr;
+      if (first) burr = &contacts[j];
+      if (!(contacts[j].depth > 0.0)) continue;  // near, not touching
+      double share = contacts[j].depth;
+      if (!found[j].shaft && !first) {
+        // A second face of the burr's is a face only more than 60° from the
+        // first (closer, it is the same face), so it enters weighted from 0
+        // at 60° to whole at 90°: not at once as it turns past 60°.
+        share *= std::clamp((std::acos(std::clamp(glm::dot(burr->normal, contacts[j].normal), -1.0, 1.0)) -
+                             std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
+      }
+      const glm::dvec3 f = k_ * share * contacts[j].normal;
+      out.force += f;
+      out.torque += glm::cross(contacts[j].point - c, f);
+      ++out.contacts;
+    }
     tracked_ = n;
     std::copy(found, found + n, track_);
   }
