@@ -11,15 +11,25 @@
 
 #include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/renderers/DeepestPoint.h"
 
 namespace millsim {
 
 namespace {
 
 class SurfacePointAlgorithm final : public HapticAlgorithm {
+  // The deepest-points force (deepestPoints): the last frame's contacts, where to look first.
+  struct Track {
+    bool shaft = false;
+    glm::dvec3 u{0.0};       // burr: centre towards material (its deepest line)
+    glm::dvec3 normal{0.0};  // burr: the contact's normal (held while the centre is inside)
+    double y = 0.0, phi = 0.0;  // shaft: the radial line's height and angle
+    double t = 0.0;          // where the line met material
+  };
+
 public:
   SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k,
-                        double feedResistance)
+                        double feedResistance, bool deepest)
       : k_(k), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice), heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
     // Sphere: a Fibonacci lattice spreads any number of points evenly.
     const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
@@ -41,6 +51,8 @@ public:
       const double a = 2.0 * std::numbers::pi * v / perSlice;
       ring_.push_back(tool.shaftRadius * glm::dvec3(std::cos(a), 0.0, std::sin(a)));
     }
+    deepest_ = deepest;
+    if (deepest_) prepareDeepest(tool, y0);
   }
 
   std::string name() const override { return "SurfacePointRenderer"; }
@@ -50,17 +62,22 @@ public:
     cut_.reset(device.position);
     heldSphere_ = glm::dvec3(0.0);
     std::fill(heldSlice_.begin(), heldSlice_.end(), glm::dvec3(0.0));
+    tracked_ = 0;
+    heldHead_ = PointContact{};
   }
 
   void carryOver(const HapticAlgorithm& previous) override {
     const auto* p = dynamic_cast<const SurfacePointAlgorithm*>(&previous);
-    if (!p || p->heldSlice_.size() != heldSlice_.size() || !(p->k_ > 0.0)) return;
+    if (!p || p->heldSlice_.size() != heldSlice_.size() || !(p->k_ > 0.0) || p->deepest_ != deepest_) return;
     // The held forces are k · (penetration at entry): the same entry, the new k.
     const double scale = k_ / p->k_;
     lastDrawn_ = p->lastDrawn_;
     cut_ = p->cut_;
     heldSphere_ = p->heldSphere_ * scale;
     for (std::size_t j = 0; j < heldSlice_.size(); ++j) heldSlice_[j] = p->heldSlice_[j] * scale;
+    tracked_ = p->tracked_;  // the contacts are geometry: the same whatever k
+    std::copy(p->track_, p->track_ + kMaxPointContacts, track_);
+    heldHead_ = p->heldHead_;
   }
 
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
@@ -74,6 +91,10 @@ public:
     const glm::dvec3 c = device.position;
     const glm::dmat3 R = glm::mat3_cast(device.orientation);
     const double h = scene.voxelSize();
+    if (deepest_) {
+      stepDeepest(scene, c, R, out);
+      return finish(scene, in, out);
+    }
 
     // Eq. 14–17: the burr sphere.
     if (scene.inside(c)) {
@@ -118,6 +139,13 @@ public:
       }
       out.torque += glm::cross(centre - c, reaction) / double(sliceY_.size());  // eq. 20–21
     }
+    return finish(scene, in, out);
+  }
+
+private:
+  HapticOutput finish(HapticScene& scene, const HapticInput& in, HapticOutput& out) {
+    const Pose& device = in.device;
+    const glm::dvec3 c = device.position;
     // Milling (MillSim's removal model; the paper's #2 cuts at the device at
     // once, which lets the hand push through any tissue unopposed): the cut
     // front advances towards the device at the feed speed, and the penalty
@@ -128,7 +156,7 @@ public:
     // (about half the burr's points collide there).
     const bool touching = out.contacts > 0 || (out.flags & kFlagHeldForce) != 0;
     double push = glm::length(out.force);
-    if (touching && !(push > 0.0) && scene.inside(c)) push = 0.5 * k_ * glm::length(c - cut_.centre());
+    if (touching && !(push > 0.0) && scene.inside(c)) push = (deepest_ ? 1.0 : 0.5) * k_ * glm::length(c - cut_.centre());
     cut_.step(scene, feed_, c, c, touching, in.milling, push, in.dt);
     out.burrCentre = cut_.centre();
     out.cutHardness = cut_.hardness();
@@ -137,7 +165,246 @@ public:
     return out;
   }
 
-private:
+  // ---- the default force: the tool's deepest points (deepestPoints TRUE) ----
+
+  // Every contact is a line through the tool where it is locally deepest in
+  // material (DeepestPoint.h); each pushes k times its depth along its
+  // normal, and the torque is those pushes' moment. The surface points only find where
+  // to look: each is tested on a surface grown by the largest gap between
+  // points (a flat face the burr or shaft touches anywhere reaches one of
+  // them). The burr's first contact starts along the sum of its points'
+  // penetrations; a point in material that no contact explains seeds another
+  // (a face more than 60° from the burr's first, or a shaft contact). Every
+  // contact is then tracked from frame to frame, also through a gap of up to
+  // a voxel, so that it comes and goes at zero depth.
+  void prepareDeepest(const ToolGeometry& tool, double y0) {
+    r_ = tool.tipRadius, rho_ = tool.shaftRadius, y0_ = y0, y1_ = tool.shaftLength;
+    // The largest angle from any direction to its nearest sphere point, over 4000 directions.
+    double gap = 0.0;
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < 4000; ++i) {
+      const double y = 1.0 - 2.0 * (i + 0.5) / 4000, rr = std::sqrt(std::max(0.0, 1.0 - y * y));
+      const glm::dvec3 d(rr * std::cos(golden * i), y, rr * std::sin(golden * i));
+      double best = -1.0;
+      for (const glm::dvec3& p : sphere_) best = std::max(best, glm::dot(d, p) / tool.tipRadius);
+      gap = std::max(gap, std::acos(std::clamp(best, -1.0, 1.0)));
+    }
+    sphereGrow_ = tool.tipRadius * (1.0 / std::cos(gap) - 1.0);
+    // The shaft's: a 90° edge across the shaft touching it half-way between two
+    // slices and two of a slice's points must reach one of them.
+    const double along = sliceY_.size() > 1 ? 0.5 * (sliceY_[1] - sliceY_[0]) : 0.5 * (tool.shaftLength - y0);
+    shaftGrow_ = (tool.shaftRadius + along) / std::cos(std::numbers::pi / perSlice_) - tool.shaftRadius;
+    inside_.assign(sphere_.size() + sliceY_.size() * ring_.size(), 0);
+  }
+
+  void stepDeepest(HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, HapticOutput& out) {
+    const double h = scene.voxelSize();
+    PointContact contacts[kMaxPointContacts];
+    Track found[kMaxPointContacts];
+    int n = 0;
+    auto add = [&](const Track& t, const PointContact& pc) {
+      // A contact within a voxel of touching stays tracked (the same contact
+      // when it touches again, entering at depth 0).
+      if (pc.depth <= -h || n == kMaxPointContacts) return false;
+      // The same contact found again, or another line into the same face: a
+      // burr in its own round pit is about as deep along many lines, and
+      // contacts that came and went among them would shake the hand. The
+      // burr keeps its first contact and adds only faces more than 60° away;
+      // a shaft contact within 30° and 4 voxels of another is the same one.
+      for (int j = 0; j < n; ++j)
+        if (found[j].shaft == t.shaft &&
+            (t.shaft ? glm::dot(contacts[j].normal, pc.normal) > 0.866 && glm::length(contacts[j].point - pc.point) < 4.0 * h
+                     : glm::dot(contacts[j].normal, pc.normal) > 0.5))
+          return false;
+      found[n] = t, contacts[n++] = pc;
+      return true;
+    };
+    auto shaft = [&](Track t) {
+      t.t = deepestOnShaft(scene, c, R, rho_, y0_, y1_, t.y, t.phi, t.t);
+      const glm::dvec3 w = R * glm::dvec3(std::cos(t.phi), 0.0, std::sin(t.phi));
+      return add(t, {c + t.y * (R * glm::dvec3(0, 1, 0)) + t.t * w, -w, rho_ - t.t});
+    };
+    if (!roundHead_) {
+      // A non-round head: its points' penetrations towards their targets
+      // (headPoints), the deepest one's length along their sum; held while
+      // the centre is inside (eq. 17).
+      PointContact head;
+      if (scene.inside(c)) out.flags |= kFlagHeldForce, head = heldHead_;
+      else head = headContact(scene, c, R, h);
+      Track t;
+      if (add(t, head)) heldHead_ = head;
+      else heldHead_ = PointContact{};
+    } else if (scene.inside(c)) {
+      // Past half immersion the burr's lines would find the far side: keep
+      // the last direction (eq. 17 holds the whole force) and measure along it.
+      out.flags |= kFlagHeldForce;
+      Track t;
+      for (int j = 0; j < tracked_; ++j)
+        if (!track_[j].shaft) {
+          t = track_[j];
+          break;
+        }
+      if (t.u == glm::dvec3(0.0) && glm::length(c - cut_.centre()) > 0.0)
+        t.u = glm::normalize(c - cut_.centre()), t.normal = -t.u, t.t = 0.0;
+      if (t.u != glm::dvec3(0.0)) {
+        // No cap on the depth: a force that stopped growing would let the
+        // hand push on for free and take more back on the way out.
+        t.t = lineCrossing(scene, c, t.u, std::min(t.t, 0.0), -1.0, r_);
+        const double depth = r_ - glm::dot(t.t * t.u, -t.normal);
+        add(t, {c - (r_ - depth) * t.normal, t.normal, depth});
+      }
+    } else {
+      // The burr: one contact, along the sum of its points' penetrations (eq.
+      // 14's a_i, on the grown sphere): a point enters at zero, so the line
+      // turns continuously — also for a burr in its own round pit, where the
+      // material is about as deep along many lines — and the contact's normal
+      // and depth are measured where it meets the surface (sphereContact).
+      // A tracked line is searched near where it was (sphereContact's
+      // tracking mode, t < r), also when it had lifted off.
+      auto tracked = [&](Track t) {
+        t.t = std::min(t.t, 0.999 * r_);
+        return t;
+      };
+      Track t;
+      int firstTracked = -1;
+      for (int j = 0; j < tracked_; ++j)
+        if (!track_[j].shaft) {
+          t = tracked(track_[j]), firstTracked = j;  // in contact: from the last frame's first line
+          break;
+        }
+      if (t.u == glm::dvec3(0.0)) {
+        glm::dvec3 sum(0.0);
+        for (const glm::dvec3& offset : sphere_) {
+          const glm::dvec3 v = c + (1.0 + sphereGrow_ / r_) * (R * offset);
+          if (scene.inside(v)) sum += penetration(scene, v, c, h);
+        }
+        if (glm::length(sum) > 0.0) t.t = r_, t.u = -glm::normalize(sum);
+      }
+      if (t.u != glm::dvec3(0.0)) {
+        const PointContact pc = burrContact(scene, c, t);
+        add(t, pc);
+      }
+      // Second faces more than 60° from the first (a hole's wall and bottom):
+      // last frame's again, then any new one. Found afresh each frame they
+      // came and went with the seeds, 0.07 mm deep, while the burr milled
+      // its own pit.
+      for (int j = firstTracked + 1; firstTracked >= 0 && j < tracked_; ++j)
+        if (!track_[j].shaft) {
+          Track face = tracked(track_[j]);
+          add(face, burrContact(scene, c, face));
+        }
+      seed(scene, c, R, contacts, n, false, [&](std::size_t i) {
+        Track face;
+        face.u = R * sphere_[i] / r_, face.t = r_;
+        const PointContact pc = burrContact(scene, c, face);
+        return add(face, pc);
+      });
+    }
+    for (int j = 0; j < tracked_; ++j)
+      if (track_[j].shaft) shaft(track_[j]);
+    seed(scene, c, R, contacts, n, true, [&](std::size_t i) {
+      Track t;
+      t.shaft = true, t.y = sliceY_[i / ring_.size()];
+      const glm::dvec3& v = ring_[i % ring_.size()];
+      t.phi = std::atan2(v.z, v.x), t.t = rho_;
+      return shaft(t);
+    });
+    // Each contact pushes k times its own depth. Not the smallest translation
+    // out of all of them (a rigid tool's): where the burr is on one wall and
+    // the leaning shaft on the opposite rim no translation clears both, the
+    // shares grow many times the depths and every ripple of the contacts'
+    // normals came through as a jolt (1.4 N frame to frame in the §8.2
+    // lean). Faces at right angles (a corner, a hole's wall and floor) get
+    // the same push either way.
+    out.contacts = 0;
+    const PointContact* burr = nullptr;  // the burr's first contact, touching or near
+    for (int j = 0; j < n; ++j) {
+      const bool first = !found[j].shaft && !burr;
+      if (first) burr = &contacts[j];
+      if (!(contacts[j].depth > 0.0)) continue;  // near, not touching
+      double share = contacts[j].depth;
+      if (!found[j].shaft && !first) {
+        // A second face of the burr's is a face only more than 60° from the
+        // first (closer, it is the same face), so it enters weighted from 0
+        // at 60° to whole at 90°: not at once as it turns past 60°.
+        share *= std::clamp((std::acos(std::clamp(glm::dot(burr->normal, contacts[j].normal), -1.0, 1.0)) -
+                             std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
+      }
+      const glm::dvec3 f = k_ * share * contacts[j].normal;
+      out.force += f;
+      out.torque += glm::cross(contacts[j].point - c, f);
+      ++out.contacts;
+    }
+    tracked_ = n;
+    std::copy(found, found + n, track_);
+  }
+
+  // The burr's contact near t.u (updates t). Its point is on the line
+  // through the centre along the normal: a sphere's contact force passes
+  // through its centre, so the burr alone gives no torque.
+  PointContact burrContact(const HapticScene& scene, const glm::dvec3& c, Track& t) const {
+    PointContact pc;
+    t.t = sphereContact(scene, c, r_, t.u, t.t, pc.normal, pc.depth);
+    pc.point = c - (r_ - pc.depth) * pc.normal, t.normal = pc.normal;
+    return pc;
+  }
+
+  PointContact headContact(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, double h) const {
+    glm::dvec3 sum(0.0);
+    PointContact pc;
+    for (std::size_t i = 0; i < sphere_.size(); ++i) {
+      const glm::dvec3 v = c + R * sphere_[i];
+      if (!scene.inside(v)) continue;
+      const glm::dvec3 a = penetration(scene, v, c + R * target_[i], h);
+      sum += a;
+      if (glm::length(a) > pc.depth) pc.depth = glm::length(a), pc.point = v + a;
+    }
+    if (glm::length(sum) > 0.0) pc.normal = glm::normalize(sum);
+    else pc.depth = 0.0;
+    return pc;
+  }
+
+  // Tests the burr's (or shaft's) points on the grown surface and, while some
+  // point in material is not explained by a contact (not inside its tangent
+  // plane, give or take the growth and half its depth: a concave surface
+  // curls up past the plane; for the burr, within 60° of a contact's
+  // normal), starts a contact from the unexplained point nearest their
+  // centroid.
+  template <class Start>
+  void seed(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, const PointContact* contacts, int& n,
+            bool onShaft, const Start& start) {
+    const std::size_t count = onShaft ? sliceY_.size() * ring_.size() : sphere_.size();
+    const double grow = onShaft ? shaftGrow_ : sphereGrow_, h = scene.voxelSize();
+    auto point = [&](std::size_t i) {
+      if (!onShaft) return c + (1.0 + grow / r_) * (R * sphere_[i]);
+      const glm::dvec3& v = ring_[i % ring_.size()];
+      return c + R * (glm::dvec3(0.0, sliceY_[i / ring_.size()], 0.0) + (1.0 + grow / rho_) * v);
+    };
+    char* inside = inside_.data() + (onShaft ? sphere_.size() : 0);
+    for (std::size_t i = 0; i < count; ++i) inside[i] = scene.inside(point(i));
+    for (int attempt = 0; attempt < 3 && n < kMaxPointContacts; ++attempt) {
+      glm::dvec3 sum(0.0);
+      int left = 0;
+      for (std::size_t i = 0; i < count; ++i) {
+        if (!inside[i]) continue;
+        const glm::dvec3 p = point(i);
+        for (int j = 0; j < n && inside[i]; ++j)
+          if (glm::dot(p - contacts[j].point, contacts[j].normal) < grow + 0.5 * contacts[j].depth + h ||
+              (!onShaft && glm::dot(glm::normalize(p - c), contacts[j].normal) < -0.5))
+            inside[i] = 0;
+        if (inside[i]) sum += p, ++left;
+      }
+      if (left == 0) return;
+      std::size_t best = count;
+      double nearest = 1e300;
+      for (std::size_t i = 0; i < count; ++i)
+        if (inside[i] && glm::length(point(i) - sum / double(left)) < nearest)
+          nearest = glm::length(point(i) - sum / double(left)), best = i;
+      inside[best] = 0;
+      if (!start(best)) return;  // the nearest candidate found nothing: the rest would not either
+    }
+  }
+
   // A non-round head: `count` points over its surface (cutting-end disc, side,
   // shank-end disc), shared by area; each disc a sunflower spiral, the side
   // rings of evenly spaced points (so a ring wholly in material pushes no net
@@ -212,6 +479,12 @@ private:
   std::vector<glm::dvec3> sphere_, ring_;  // sphere_: the head's points (a sphere for the round burr)
   std::vector<glm::dvec3> target_;  // a non-round head's points: where each one's penetration is measured towards
   bool roundHead_ = true;
+  bool deepest_ = false;
+  double r_ = 0.0, rho_ = 0.0, y0_ = 0.0, y1_ = 0.0, sphereGrow_ = 0.0, shaftGrow_ = 0.0;
+  std::vector<char> inside_;  // per surface point: in material on the grown surface (sized at compile)
+  Track track_[kMaxPointContacts];
+  int tracked_ = 0;
+  PointContact heldHead_;  // a non-round head's last contact (held while its centre is inside)
   std::vector<double> sliceY_;
   glm::dvec3 heldSphere_{0.0};
   Pose lastDrawn_;
@@ -229,7 +502,8 @@ const NodeType& SurfacePointRenderer::type() {
 
 std::unique_ptr<HapticAlgorithm> SurfacePointRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
   return std::make_unique<SurfacePointAlgorithm>(tool, sphereVertices.get(), slices.get(), verticesPerSlice.get(),
-                                                 double(springConstant.get()), double(feedResistance.get()));
+                                                 double(springConstant.get()), double(feedResistance.get()),
+                                                 deepestPoints.get());
 }
 
 // Penalty forces on points of the tool: the stiffness is the shared spring,

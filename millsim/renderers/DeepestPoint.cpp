@@ -1,0 +1,185 @@
+#include "millsim/renderers/DeepestPoint.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "millsim/haptics/HapticScene.h"
+
+namespace millsim {
+
+double lineCrossing(const HapticScene& scene, const glm::dvec3& o, const glm::dvec3& u, double t0, double tMin,
+                    double tMax) {
+  const double step = 0.5 * scene.voxelSize();
+  double tAir = std::clamp(t0, tMin, tMax), sAir = scene.field(o + tAir * u);
+  double tMat = tAir, sMat = sAir;
+  if (sAir > 0.0) {  // in material: down to air
+    for (;;) {
+      if (tMat <= tMin) return tMin;
+      tAir = std::max(tMin, tMat - step), sAir = scene.field(o + tAir * u);
+      if (sAir <= 0.0) break;
+      tMat = tAir, sMat = sAir;
+    }
+  } else {  // in air: up to material
+    for (;;) {
+      if (tAir >= tMax) return tMax;
+      tMat = std::min(tMax, tAir + step), sMat = scene.field(o + tMat * u);
+      if (sMat > 0.0) break;
+      tAir = tMat, sAir = sMat;
+    }
+  }
+  // Eq. 1's fraction between the bracket's samples, then once more inside the
+  // narrowed bracket (regula falsi): the density is only piecewise linear.
+  for (int i = 0;; ++i) {
+    const double t = tAir + (tMat - tAir) * std::clamp(-sAir / (sMat - sAir), 0.0, 1.0);
+    if (i == 1) return t;
+    const double s = scene.field(o + t * u);
+    if (s > 0.0) tMat = t, sMat = s;
+    else tAir = t, sAir = s;
+  }
+}
+
+namespace {
+
+// Moves (a, b) to the least t(a, b) nearby: per scale, a parabola through
+// t at ±step along each coordinate, and a Newton step to its vertex (at most
+// two steps; off a ridge, two steps down its steeper side). A move must gain
+// more than `gain`: where t is about as small along many lines (a burr in
+// its own round pit) a tracked contact then stays put instead of wandering
+// with the iso-surface's ripple.
+template <class T>
+double fitLeast(const T& t, double& a, double& b, double ta, const double* scales, int count, double stepA,
+                double stepB, double gain) {
+  for (int k = 0; k < count; ++k) {
+    const double e[2] = {scales[k] * stepA, scales[k] * stepB};
+    double move[2] = {0.0, 0.0}, side[3] = {a, b, ta};  // the best of the samples, should no step go downhill
+    for (int i = 0; i < 2; ++i) {
+      const double tp = i == 0 ? t(a + e[0], b) : t(a, b + e[1]), tm = i == 0 ? t(a - e[0], b) : t(a, b - e[1]);
+      const double slope = (tp - tm) / (2.0 * e[i]), curve = (tp - 2.0 * ta + tm) / (e[i] * e[i]);
+      if (curve > 0.0) move[i] = std::clamp(-slope / curve, -2.0 * e[i], 2.0 * e[i]);
+      else if (tp != tm) move[i] = tp < tm ? 2.0 * e[i] : -2.0 * e[i];
+      if (std::min(tp, tm) < side[2])
+        side[0] = a + (i == 0 ? (tp < tm ? e[0] : -e[0]) : 0.0), side[1] = b + (i == 1 ? (tp < tm ? e[1] : -e[1]) : 0.0),
+        side[2] = std::min(tp, tm);
+    }
+    if (move[0] == 0.0 && move[1] == 0.0) continue;
+    // Downhill only (the whole step, else half of it, else the best sample):
+    // a held pose then settles on one point instead of cycling round a kink.
+    bool moved = false;
+    for (const double f : {1.0, 0.5}) {
+      const double tn = t(a + f * move[0], b + f * move[1]);
+      if (!(tn < ta - gain)) continue;
+      a += f * move[0], b += f * move[1], ta = tn, moved = true;
+      break;
+    }
+    if (!moved && side[2] < ta - gain) a = side[0], b = side[1], ta = side[2];
+  }
+  return ta;
+}
+
+// Coarse steps to find the contact, then finer ones: where the depth has a
+// kink (an edge), a fit's vertex is off the kink by up to its step.
+constexpr double kFresh[] = {2.0, 2.0, 1.0, 0.5, 0.25, 0.1};
+constexpr double kTracking[] = {0.5, 0.25, 0.1};
+// What a tracked contact's move must gain (voxels): the iso-surface ripple's size.
+constexpr double kGain = 0.02;
+// How far a tracked burr line may turn in a frame (rad, about 3°): 3000°/s, far
+// more than a hand turns the tool, so an edge's kink is still followed at once.
+// In the §8.2 replay 0.02 and 0.05 both keep mill-and-lean's lean under 0.02 N
+// a frame (none: 0.07 N); 0.05 also keeps the §8.2 lean under 0.05 N.
+constexpr double kMaxTurn = 0.05;
+
+}  // namespace
+
+double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, glm::dvec3& u, double tGuess,
+                     glm::dvec3& normal, double& depth) {
+  const double h = scene.voxelSize(), tMax = r + 4.0 * h;
+  {
+    // Towards the deepest line nearby, each move gaining at least kGain
+    // voxels: at an edge a line a few degrees off is much shallower, while in
+    // a burr's own round pit, about as deep along many lines, u stays put.
+    const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 t2 = glm::cross(u, t1), u0 = u;
+    double guess = tGuess;
+    auto dir = [&](double a, double b) {
+      return glm::normalize(u0 + std::tan(std::clamp(a, -1.2, 1.2)) * t1 + std::tan(std::clamp(b, -1.2, 1.2)) * t2);
+    };
+    auto t = [&](double a, double b) { return lineCrossing(scene, c, dir(a, b), guess, -r, tMax); };
+    double a = 0.0, b = 0.0;
+    const double first = t(0.0, 0.0);
+    guess = first;
+    const double angle = std::min(0.3, h / r);
+    if (tGuess >= r) {
+      fitLeast(t, a, b, first, kFresh, 6, angle, angle, 0.0);
+      u = dir(a, b);
+    } else {
+      fitLeast(t, a, b, first, kTracking, 3, angle, angle, kGain * h);
+      // A tracked line turns at most kMaxTurn a frame: where the material is
+      // about as deep along many lines (a burr in its own round pit) the
+      // deepest one hops several degrees at once as the tool moves, and the
+      // force's direction would hop with it.
+      const glm::dvec3 to = dir(a, b);
+      const double turn = std::acos(std::clamp(glm::dot(u0, to), -1.0, 1.0));
+      u = turn > kMaxTurn ? glm::normalize(u0 + (to - u0) * (kMaxTurn / turn)) : to;
+    }
+  }
+  const double t0 = lineCrossing(scene, c, u, tGuess, -r, tMax);
+  normal = -u, depth = r - t0;
+  // The normal of the surface through the crossings of four lines two voxels
+  // to each side: where the line meets a flat face it is the face's normal
+  // wherever it meets it, and the one-voxel density ramp's iso-surface,
+  // terraced with the voxel lattice (its local normal several degrees off
+  // where the surface is oblique to the voxel axes), is averaged over ±2
+  // voxels. Kept when all four lines meet material and it is within 30° of
+  // the line (else a rim or a crease lies in between).
+  if (!(t0 > 0.0 && t0 < r)) return t0;
+  const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 t2 = glm::cross(u, t1);
+  const double span = std::tan(std::min(0.6, 2.0 * h / t0));
+  const glm::dvec3 side[4] = {t1, -t1, t2, -t2};
+  glm::dvec3 q[4];
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec3 d = glm::normalize(u + span * side[i]);
+    const double ti = lineCrossing(scene, c, d, t0, -r, tMax);
+    if (ti >= tMax) return t0;
+    q[i] = c + ti * d;
+  }
+  glm::dvec3 n = glm::cross(q[0] - q[1], q[2] - q[3]);
+  if (!(glm::length(n) > 0.0)) return t0;
+  n = glm::normalize(n);
+  if (glm::dot(n, u) < 0.0) n = -n;
+  if (glm::dot(n, u) < std::cos(0.5236)) return t0;
+  normal = -n, depth = r - glm::dot(t0 * u, n);  // the line's crossing, along the surface's normal
+  return t0;
+}
+
+double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, double rho, double y0,
+                      double y1, double& y, double& phi, double tGuess) {
+  const double h = scene.voxelSize(), tMax = rho + 4.0 * h;
+  const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
+  double guess = tGuess;
+  auto line = [&](double yy, double p) {
+    return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), guess,
+                        -rho, tMax);
+  };
+  // Where the axis itself is in material the radial lines no longer say which
+  // way is out: the fit stays out of there, and a contact already there keeps
+  // its line (as eq. 19 keeps a slice's reaction).
+  auto t = [&](double yy, double p) {
+    const double at = line(yy, p);
+    return at < 0.0 ? tMax : at;
+  };
+  const double t0 = line(y, phi);
+  if (t0 < 0.0) return t0;
+  guess = t0;
+  const bool fresh = tGuess >= rho;
+  // A voxel across on the shaft's surface, and along it.
+  const double angle = std::min(0.6, h / rho);
+  const double tBest = fresh ? fitLeast(t, y, phi, t0, kFresh, 6, h, angle, 0.0)
+                             : fitLeast(t, y, phi, t0, kTracking, 3, h, angle, 0.0);
+  y = std::clamp(y, y0, y1);
+  return tBest;
+}
+
+}  // namespace millsim

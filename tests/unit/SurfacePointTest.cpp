@@ -1,0 +1,300 @@
+// Algorithm #2, SurfacePointRenderer: the must-hold contract of issue 14 at
+// its defaults (the tool's deepest points, force linear in depth), and the
+// paper's variant (deepestPoints FALSE: the sum of eq. 14–21).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "measure/PhysicalReference.h"
+#include "measure/PhysicalScenes.h"
+#include "measure/Renderers.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/devices/Trajectory.h"
+#include "millsim/renderers/SurfacePointRenderer.h"
+#include "millsim/run/HapticLoop.h"
+#include "millsim/run/Replay.h"
+#include "millsim/volume/VoxelScene.h"
+#include "millsim/volume/VoxelVolume.h"
+#include "millsim/x3d/X3DLoader.h"
+#include "AnalyticScenes.h"
+
+using namespace millsim;
+using namespace millsim::test;
+
+namespace {
+
+struct Rig {
+  VoxelVolume volume;
+  VoxelScene scene;
+  std::unique_ptr<HapticAlgorithm> algorithm;
+  Rig(VoxelVolume v, const SurfacePointRenderer& renderer, const ToolGeometry& tool = kTool) : volume(std::move(v)) {
+    scene.addVolume(volume, glm::dmat4(1.0), kIso);
+    algorithm = renderer.compile(tool, scene);
+  }
+  HapticOutput step(const Pose& p) { return algorithm->step(scene, HapticInput{p, 1e-3}); }
+  // Approaches `target` from `from` in 40 steps, then holds it 20 frames.
+  HapticOutput press(const Pose& from, const Pose& target) {
+    algorithm->reset(from);
+    for (int i = 1; i <= 40; ++i) {
+      const double u = i / 40.0;
+      step(Pose{from.position + (target.position - from.position) * u, glm::slerp(from.orientation, target.orientation, u)});
+    }
+    HapticOutput out;
+    for (int i = 0; i < 20; ++i) out = step(target);
+    return out;
+  }
+};
+
+double k() { return SurfacePointRenderer().springConstant.get(); }
+
+double degreesBetween(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+}  // namespace
+
+// Must hold (issue 14): a burr whose surface is 0.25 mm inside material is
+// pushed out, by the penetration times the spring, along the outward normal.
+TEST(SurfacePoint, ABurrWhoseSurfaceIsAQuarterMillimetreInsideASlabIsPushedOut) {
+  SurfacePointRenderer r;
+  for (double x : {0.0, 0.03e-3, 0.05e-3}) {  // sub-voxel phases
+    Rig rig(slab(), r);
+    const Pose pressed = vertical({x, kTool.tipRadius - 0.25e-3, 0.013e-3});
+    const auto out = rig.press(vertical({x, 1.5e-3, 0}), pressed);
+    EXPECT_NEAR(out.force.y, k() * 0.25e-3, 0.05 * k() * 0.25e-3) << x;
+    EXPECT_LE(std::hypot(out.force.x, out.force.z), 0.05 * out.force.y) << x;
+  }
+}
+
+// The force is the spring times the depth from the first touch of the burr's
+// surface (5 % of the force at 0.05 mm, the physical suite's floor), past
+// the burr centre entering the material too.
+TEST(SurfacePoint, TheForceIsLinearInTheDepthFromFirstTouch) {
+  SurfacePointRenderer r;
+  for (double depth : {0.01e-3, 0.05e-3, 0.1e-3, 0.3e-3, 0.6e-3, 0.8e-3}) {
+    Rig rig(slab(), r);
+    const auto out = rig.press(vertical({0.02e-3, 1.5e-3, 0}), vertical({0.02e-3, kTool.tipRadius - depth, 0}));
+    EXPECT_NEAR(out.force.y, k() * depth, 0.05 * k() * std::max(depth, 0.05e-3)) << depth;
+  }
+}
+
+// Must hold (issue 14): pressing straight down on a flat face gives a lateral
+// force of at most 5 % of the normal force, at every depth, sub-voxel phase and tilt.
+TEST(SurfacePoint, PressingStraightDownOnAFlatFaceGivesNoSidewaysForce) {
+  SurfacePointRenderer r;
+  for (double tilt : {0.0, 0.5, 1.0})
+    for (double x : {0.0, 0.037e-3})
+      for (double depth : {0.05e-3, 0.1e-3, 0.2e-3, 0.3e-3, 0.6e-3}) {
+        Rig rig(slab(), r);
+        const glm::dvec3 at(x, kTool.tipRadius - depth, 0.013e-3);
+        const auto out = rig.press(tilted(at + glm::dvec3(0, 1.5e-3, 0), tilt), tilted(at, tilt));
+        ASSERT_GT(out.force.y, 0.0) << "tilt " << tilt << " x " << x << " depth " << depth;
+        EXPECT_LE(std::hypot(out.force.x, out.force.z), 0.05 * out.force.y)
+            << "tilt " << tilt << " x " << x << " depth " << depth;
+      }
+}
+
+// Must hold (issue 14): on a ball the force is within 3° of the normal.
+TEST(SurfacePoint, OnABallTheForceIsWithinThreeDegreesOfTheNormal) {
+  const double R = 2.0e-3;
+  SurfacePointRenderer r;
+  Rig rig(analytic(64, [&](const glm::dvec3& p) { return glm::length(p) - R; }), r);
+  for (const glm::dvec3 d : {glm::dvec3(0.3, 1.0, 0.2), glm::dvec3(0.4, 1.0, -0.3), glm::dvec3(-0.7, 0.6, 0.1),
+                             glm::dvec3(1.0, 0.2, 0.05)})
+    for (double depth : {0.05e-3, 0.15e-3, 0.25e-3}) {
+      const glm::dvec3 n = glm::normalize(d);
+      const auto out = rig.press(vertical(n * (R + kTool.tipRadius + 1.0e-3)), vertical(n * (R + kTool.tipRadius - depth)));
+      ASSERT_GT(glm::length(out.force), 0.0) << "depth " << depth;
+      EXPECT_LE(degreesBetween(out.force, n), 3.0) << "n " << n.x << "," << n.y << "," << n.z << " depth " << depth;
+      // Not the contract's: the voxelised ball's iso-surface lies up to about
+      // 0.09 voxel off the true sphere (the one-voxel density ramp), so the
+      // depth is good to 8 µm here, not to 5 % of 0.05 mm.
+      EXPECT_NEAR(glm::length(out.force), k() * depth, k() * 0.08 * kH) << "depth " << depth;
+    }
+}
+
+// In a concave corner (a hole's wall and bottom) the burr is pushed out of both.
+TEST(SurfacePoint, InACornerTheBurrIsPushedOutOfBothFaces) {
+  // Material for y < 0 and for x > 0.6 mm (a wall standing on a floor).
+  SurfacePointRenderer r;
+  Rig rig(analytic(64, [](const glm::dvec3& p) { return std::min(p.y, 0.6e-3 - p.x); }), r);
+  const double d = 0.15e-3;
+  const glm::dvec3 at(0.6e-3 - kTool.tipRadius + d, kTool.tipRadius - d, 0.013e-3);
+  const auto out = rig.press(vertical(at + glm::dvec3(-1.0e-3, 1.0e-3, 0)), vertical(at));
+  EXPECT_NEAR(out.force.x, -k() * d, 0.05 * k() * d);
+  EXPECT_NEAR(out.force.y, k() * d, 0.05 * k() * d);
+}
+
+// Must hold (issue 14): a shaft leaning on an edge gives torque of the right
+// sign with the moment arm within 15 % of the rigid tool's (measure/PhysicalReference).
+TEST(SurfacePoint, AShaftLeaningOnAnEdgeIsPushedBackWithTheReferenceMomentArm) {
+  using namespace millsim::measure;
+  const PhysicalScene ps = physicalScene("shaft-on-edge");
+  const double h = 0.1e-3;
+  auto scene = voxelise(ps.shape, h);
+  const ToolGeometry tool = standardTool();
+  SurfacePointRenderer r;
+  auto algorithm = r.compile(tool, *scene->scene);
+  for (const PhysicalProbe& probe : physicalProbes(ps, tool, h, 2)) {
+    const PhysicalPose ref = constrainedPose(ps.material, tool, probe.device, {k()});
+    algorithm->reset(Pose{probe.start, probe.device.orientation});
+    HapticOutput out;
+    for (int i = 1; i <= 40; ++i)
+      out = algorithm->step(*scene->scene, {Pose{probe.start + (probe.device.position - probe.start) * (i / 40.0),
+                                                  probe.device.orientation}, 1e-3});
+    for (int i = 0; i < 20; ++i) out = algorithm->step(*scene->scene, {probe.device, 1e-3});
+    const double depth = probe.depth * 1e3;
+    ASSERT_GT(glm::length(out.force), 0.0) << depth << " mm";
+    EXPECT_GT(glm::dot(out.torque, ref.torque), 0.0) << depth << " mm";
+    EXPECT_LE(degreesBetween(out.force, ref.force), 3.0) << depth << " mm";
+    const double arm = glm::length(out.torque) / glm::length(out.force);
+    EXPECT_NEAR(arm, ref.momentArm, 0.15 * ref.momentArm) << depth << " mm";
+  }
+}
+
+TEST(SurfacePoint, ForceDoesNotDependOnVertexResolution) {
+  for (bool deepest : {true, false}) {
+    const double depth = 0.3e-3;
+    std::vector<double> forces;
+    for (int n : {24, 100, 400}) {
+      SurfacePointRenderer r;
+      r.deepestPoints.set(deepest);
+      r.sphereVertices.set(n);
+      Rig rig(slab(), r);
+      forces.push_back(rig.press(vertical({0, 1.5e-3, 0}), vertical({0, kTool.tipRadius - depth, 0})).force.y);
+    }
+    // The paper's 24 points: discretisation error; the deepest points: none to speak of.
+    EXPECT_NEAR(forces[0] / forces[2], 1.0, deepest ? 0.01 : 0.25) << deepest;
+    EXPECT_NEAR(forces[1] / forces[2], 1.0, deepest ? 0.01 : 0.08) << deepest;
+  }
+}
+
+// The paper's sum grows as the depth squared (k·d²/4r on a flat face, the
+// cap's points each a_i deep), which is why it is no longer the default.
+TEST(SurfacePoint, ThePapersSumGrowsAsTheDepthSquared) {
+  SurfacePointRenderer r;
+  r.deepestPoints.set(false);
+  r.sphereVertices.set(400);
+  std::vector<double> f;
+  for (double depth : {0.1e-3, 0.2e-3, 0.4e-3}) {
+    Rig rig(slab(), r);
+    f.push_back(rig.press(vertical({0, 1.5e-3, 0}), vertical({0, kTool.tipRadius - depth, 0})).force.y);
+    EXPECT_NEAR(f.back(), r.springConstant.get() * depth * depth / (4.0 * kTool.tipRadius),
+                0.1 * r.springConstant.get() * depth * depth / (4.0 * kTool.tipRadius)) << depth;
+  }
+  EXPECT_NEAR(f[2] / f[0], 16.0, 2.0);
+}
+
+TEST(SurfacePoint, ThePapersVariantHoldsTheForceWhileTheCentreIsInside) {
+  SurfacePointRenderer r;
+  r.deepestPoints.set(false);
+  Rig rig(slab(), r);
+  rig.press(vertical({0, 1.5e-3, 0}), vertical({0, 0.05e-3, 0}));
+  const auto before = rig.step(vertical({0, 0.02e-3, 0}));  // centre just outside
+  EXPECT_FALSE(before.flags & kFlagHeldForce);
+  const auto inside = rig.step(vertical({0, -0.3e-3, 0}));  // centre inside: eq. 17
+  EXPECT_EQ(inside.force, before.force);
+  EXPECT_TRUE(inside.flags & kFlagHeldForce);
+  const auto deeper = rig.step(vertical({0, -0.4e-3, 0}));
+  EXPECT_EQ(deeper.force, before.force);
+  const auto out = rig.step(vertical({0, 0.1e-3, 0}));  // out again: computed afresh
+  EXPECT_NE(out.force, before.force);
+}
+
+// By default only the direction is held while the centre is inside: the
+// force keeps growing with the depth along it.
+TEST(SurfacePoint, WhileTheCentreIsInsideTheDirectionIsHeldAndTheForceStillGrows) {
+  SurfacePointRenderer r;
+  Rig rig(slab(), r);
+  rig.press(vertical({0, 1.5e-3, 0}), vertical({0, 0.05e-3, 0}));
+  for (double y : {-0.1e-3, -0.3e-3}) {
+    const auto out = rig.step(vertical({0, y, 0}));
+    EXPECT_TRUE(out.flags & kFlagHeldForce);
+    EXPECT_NEAR(out.force.y, k() * (kTool.tipRadius - y), 0.02 * k() * (kTool.tipRadius - y)) << y;
+    EXPECT_LE(std::hypot(out.force.x, out.force.z), 1e-6 * out.force.y);
+  }
+}
+
+TEST(SurfacePoint, ThePapersSliceHoldsItsReactionWhileItsCentreIsInside) {
+  SurfacePointRenderer r;
+  r.deepestPoints.set(false);
+  r.slices.set(4);
+  // A wall for x > 0: lean the shaft in until slice centres cross it.
+  Rig rig(analytic(64, [](const glm::dvec3& p) { return -p.x; }), r);
+  rig.press(vertical({-0.7e-3, -1.0e-3, 0}), tilted({-0.7e-3, -1.0e-3, 0}, 0.2));
+  const auto b = rig.step(tilted({-0.7e-3, -1.0e-3, 0}, 0.6));  // upper slice centres now in the wall
+  EXPECT_TRUE(b.flags & kFlagHeldForce);
+  EXPECT_TRUE(std::isfinite(b.torque.z));
+  EXPECT_GT(b.torque.z, 0.0);
+}
+
+TEST(SurfacePoint, DrawsTheToolWhereTheDeviceIs) {
+  SurfacePointRenderer r;
+  Rig rig(slab(), r);
+  const Pose p = tilted({0, 0.1e-3, 0}, 0.3);
+  rig.algorithm->reset(p);
+  const auto out = rig.step(p);
+  EXPECT_EQ(out.drawnTool.position, p.position);
+}
+
+// The default lesson (a burr milling its own round pit, then the shaft leant
+// on the hole's edge and held) felt smoothly: the force changes little from
+// frame to frame. A contact per deepest line — about as deep along many
+// lines in the pit — made up to six contacts come and go, 0.065 N a frame on
+// average in the hold with the simulated hand shaking 3.5 µm a frame.
+namespace {
+
+// A stretch of a replay and the frame-to-frame force change it allows.
+struct Segment {
+  double from, to, meanLimit, maxLimit;  // s, N
+  double sum = 0.0, max = 0.0;
+  int count = 0;
+};
+
+// Replays the default lesson (SurfacePointRenderer) through `trajectory` and
+// checks each segment's mean and largest change of force from one frame to the next.
+void expectFeltWithoutShaking(const char* trajectory, std::vector<Segment> segments) {
+  LoadResult r = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const Trajectory path = Trajectory::load(trajectory);
+  glm::dvec3 last(0.0);
+  bool first = true;
+  ReplayOptions options;
+  options.onFrame = [&](const FrameRecord& f) {
+    const double change = glm::length(f.force - last);
+    for (Segment& s : segments)
+      if (!first && f.t > s.from && f.t < s.to) s.sum += change, s.max = std::max(s.max, change), ++s.count;
+    last = f.force, first = false;
+  };
+  const ReplaySummary summary = replay(*r.scene, path, nullptr, options);
+  EXPECT_EQ(summary.rendererName, "SurfacePointRenderer");
+  for (const Segment& s : segments) {
+    ASSERT_GT(s.count, 0);
+    EXPECT_LE(s.sum / s.count, s.meanLimit) << s.from << "-" << s.to << " s: mean force change a frame";
+    EXPECT_LE(s.max, s.maxLimit) << s.from << "-" << s.to << " s: largest force change a frame";
+  }
+}
+
+}  // namespace
+
+// Milling down (the feed moves the cut front every frame), leaning, holding.
+TEST(SurfacePoint, TheDefaultLessonIsFeltWithoutShaking) {
+  expectFeltWithoutShaking(MILLSIM_SOURCE_DIR "/x3d/trajectories/mill-and-lean.csv",
+                           {{2.5, 4.0, 2e-3, 0.03}, {4.2, 6.0, 2e-3, 0.03}, {6.2, 8.0, 1e-4, 1e-3}});
+}
+
+// The paper's §8.2 procedure: milling the hole, milling while the shaft leans
+// on its rim with the burr on the opposite wall (a wedge, where contacts that
+// came and went once gave 1.4 N steps), leaning and holding without the button.
+// Measured: largest steps 0.043, 0.049, 0.026, 0.000 N; means under 0.7 mN.
+TEST(SurfacePoint, TheSection82ProcedureIsFeltWithoutShaking) {
+  expectFeltWithoutShaking(MILLSIM_SOURCE_DIR "/x3d/trajectories/section-8-2.csv",
+                           {{2.5, 13.0, 2e-3, 0.08}, {13.0, 20.0, 2e-3, 0.08}, {20.5, 25.0, 2e-3, 0.08},
+                            {25.0, 39.9, 1e-4, 0.01}});
+}
