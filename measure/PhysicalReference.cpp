@@ -227,7 +227,7 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
   // Constraints further than this from contact stay out of the QP (an iteration whose
   // step brings one closer takes it in next time; the line search sees every one).
   const double margin = 0.5 * tool.tipRadius + 1e-4;
-  PhysicalPose out;
+  int iterations = 0;  // of the last run
   Vec6 v = Vec6::Zero();
   Eigen::VectorXd lambda;
   std::vector<Constraint> cons, active;
@@ -238,8 +238,11 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
     gather(material, tool, frameOf(w, device, s, rotate), s, rotate, tol, 1.0, &deepest);
     return std::max(0.0, -deepest);
   };
+  // One SQP run from `start` (the local minimum it reaches).
+  auto solveFrom = [&](const Vec6& start) {
+  v = start, active.clear(), activeLambda.clear(), stepConverged = false;
   for (int it = 0; it < tol.maxIterations; ++it) {
-    out.iterations = it + 1;
+    iterations = it + 1;
     cons = gather(material, tool, frameOf(v, device, s, rotate), s, rotate, tol, margin, nullptr);
     const int m = int(cons.size());
     Eigen::MatrixXd A(m, 6);
@@ -290,36 +293,82 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
       break;
     }
   }
-  out.violation = violationAt(v);
+  };
+  struct Run {
+    Vec6 v;
+    Eigen::VectorXd lambda;
+    std::vector<Constraint> cons;
+    bool stepConverged;
+    int iterations;
+  };
+  auto keep = [&] { return Run{v, lambda, cons, stepConverged, iterations}; };
+  solveFrom(Vec6::Zero());
+  std::vector<Run> runs{keep()};
+  // A start on a symmetry plane can end on a saddle of the coupling energy: a
+  // burr pressed past a convex edge along its bisector is held on the bisector
+  // (|Δx| = r + √2·a for a depth a along each face), though sliding onto either
+  // face costs less (r + a). So from a pose in contact the solve starts again
+  // a little off it along each axis, and the feasible result of least energy
+  // ½|v|² is the reference; others as near (the other face) are its alternatives.
+  if (!active.empty()) {
+    const Vec6 first = v;
+    const double delta = 0.25 * std::max(first.norm(), 1e-5);
+    for (int axis = 0; axis < 3; ++axis)  // the translation: where the saddles are
+      for (const double sign : {1.0, -1.0}) {
+        Vec6 start = first;
+        start(axis) += sign * delta;
+        solveFrom(start);
+        if (stepConverged && violationAt(v) <= tol.violation) runs.push_back(keep());
+      }
+  }
+  std::size_t best = 0;
+  for (std::size_t r = 1; r < runs.size(); ++r)
+    if (runs[r].v.squaredNorm() < runs[best].v.squaredNorm() * (1.0 - 1e-9)) best = r;
+  auto report = [&](const Run& run) {
+    PhysicalPose out;
+    v = run.v, lambda = run.lambda, cons = run.cons, stepConverged = run.stepConverged;
+    out.iterations = run.iterations;
+    out.violation = violationAt(v);
 
-  const Frame fr = frameOf(v, device, s, rotate);
-  out.pose = Pose{fr.x, fr.R};
-  out.force = metric.k * (fr.x - device.position);
-  glm::dvec3 sumF(0.0), sumT(0.0);
-  for (std::size_t j = 0; j < cons.size(); ++j) {
-    const double mu = metric.k * lambda(Eigen::Index(j));
-    if (!(mu > 0.0)) continue;
-    const Constraint& c = cons[j];
-    ReferenceContact rc;
-    rc.normal = c.normal;
-    rc.point = c.centre - material.pieces[std::size_t(c.piece)](c.centre) * c.normal;
-    rc.force = mu, rc.onShaft = c.shaft, rc.piece = c.piece;
-    out.contacts.push_back(rc);
-    sumF += mu * c.normal;
-    sumT += glm::cross(rc.point - fr.x, mu * c.normal);
+    const Frame fr = frameOf(v, device, s, rotate);
+    out.pose = Pose{fr.x, fr.R};
+    out.force = metric.k * (fr.x - device.position);
+    glm::dvec3 sumF(0.0), sumT(0.0);
+    for (std::size_t j = 0; j < cons.size(); ++j) {
+      const double mu = metric.k * lambda(Eigen::Index(j));
+      if (!(mu > 0.0)) continue;
+      const Constraint& c = cons[j];
+      ReferenceContact rc;
+      rc.normal = c.normal;
+      rc.point = c.centre - material.pieces[std::size_t(c.piece)](c.centre) * c.normal;
+      rc.force = mu, rc.onShaft = c.shaft, rc.piece = c.piece;
+      out.contacts.push_back(rc);
+      sumF += mu * c.normal;
+      sumT += glm::cross(rc.point - fr.x, mu * c.normal);
+    }
+    out.torque = rotate ? metric.kr * fr.phi : sumT;
+    const double fn = glm::length(out.force);
+    out.stationarity = (glm::length(out.force - sumF) + glm::length(out.torque - sumT) / tool.shaftLength) /
+                       std::max(fn, 1e-3);
+    out.converged = stepConverged && out.violation <= tol.violation &&
+                    out.stationarity <= tol.stationarity;
+    if (fn > 0.0) {
+      out.actionAxis = out.force / fn;
+      out.actionPoint = fr.x + glm::cross(out.force, out.torque) / (fn * fn);
+      out.momentArm = glm::length(out.torque) / fn;
+    }
+    return out;
+  };
+  PhysicalPose result = report(runs[best]);
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (r == best || runs[r].v.squaredNorm() > runs[best].v.squaredNorm() * (1.0 + 1e-6)) continue;
+    PhysicalPose alt = report(runs[r]);
+    bool fresh = glm::length(alt.pose.position - result.pose.position) > 1e-7;
+    for (const PhysicalPose& seen : result.alternatives)
+      fresh = fresh && glm::length(alt.pose.position - seen.pose.position) > 1e-7;
+    if (fresh) result.alternatives.push_back(std::move(alt));
   }
-  out.torque = rotate ? metric.kr * fr.phi : sumT;
-  const double fn = glm::length(out.force);
-  out.stationarity = (glm::length(out.force - sumF) + glm::length(out.torque - sumT) / tool.shaftLength) /
-                     std::max(fn, 1e-3);
-  out.converged = stepConverged && out.violation <= tol.violation &&
-                  out.stationarity <= tol.stationarity;
-  if (fn > 0.0) {
-    out.actionAxis = out.force / fn;
-    out.actionPoint = fr.x + glm::cross(out.force, out.torque) / (fn * fn);
-    out.momentArm = glm::length(out.torque) / fn;
-  }
-  return out;
+  return result;
 }
 
 }  // namespace millsim::measure

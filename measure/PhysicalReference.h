@@ -58,6 +58,10 @@ struct PhysicalPose {
   // constrained burr centre, and its direction) and moment arm |T|/|F| (m).
   glm::dvec3 actionPoint{0.0}, actionAxis{0.0};
   double momentArm = 0.0;
+  // Other poses exactly as near in the coupling metric (a burr pressed past an
+  // edge along its bisector may slide onto either face): a renderer that took
+  // one of them is measured against it.
+  std::vector<PhysicalPose> alternatives;
   // Solver report: deepest remaining penetration (m, ≥ 0), KKT residual
   // |k·Δx − ΣF_i n_i| / max(|F|, 1 mN) (1), iterations, and whether both
   // tolerances were met.

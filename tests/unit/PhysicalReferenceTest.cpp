@@ -129,6 +129,30 @@ TEST(PhysicalReference, ShaftOnEdgeByHand) {
   }
 }
 
+// A burr pressed past a convex edge along its bisector, the tool leaning the
+// same way (the shaft clear): by hand the nearest pose out of the material is
+// on either face, r + a from the device (a its depth along each face), not on
+// the bisector, r + √2·a away, where a symmetric start would stay (a saddle).
+TEST(PhysicalReference, PressedPastAConvexEdgeTheBurrSlidesOntoAFace) {
+  const Material edge{{[](const glm::dvec3& p) {
+    if (p.x <= 0.0 && p.y <= 0.0) return std::max(p.x, p.y);
+    return std::hypot(std::max(p.x, 0.0), std::max(p.y, 0.0));
+  }}};
+  const double r = kTool.tipRadius, a = 0.3e-3;
+  const Pose device{{-a, -a, 0.0}, rotationBetween({0, 1, 0}, glm::normalize(glm::dvec3(1, 1, 0)))};
+  const PhysicalPose held = constrainedPose(edge, kTool, device, {kK, std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(held.converged);
+  EXPECT_NEAR(glm::length(held.pose.position - device.position), r + a, 1e-9) << "on a face, not the bisector";
+  const double onSide = glm::length(held.pose.position - glm::dvec3(r, -a, 0.0));
+  const double onTop = glm::length(held.pose.position - glm::dvec3(-a, r, 0.0));
+  EXPECT_LT(std::min(onSide, onTop), 1e-9);
+  EXPECT_NEAR(glm::length(held.force), kK * (r + a), 1e-6);
+  // The other face is exactly as near: a renderer that slid onto it is measured against it.
+  ASSERT_EQ(held.alternatives.size(), 1u);
+  EXPECT_NEAR(glm::length(held.alternatives[0].pose.position - device.position), r + a, 1e-9);
+  EXPECT_GT(glm::length(held.alternatives[0].pose.position - held.pose.position), 1e-4) << "the other face";
+}
+
 // A tool in a drilled hole (radius 0.6 mm, 1.5 mm deep), the burr pushed d into
 // the −x wall and d into the bottom. Tilted 15° toward +x the shaft is clear: by
 // hand the burr is pushed d out of each (two contacts), F = k·d·(1, 1, 0), no
