@@ -516,12 +516,19 @@ std::unique_ptr<HapticAlgorithm> SurfacePointRenderer::compile(const ToolGeometr
 // 137 ns per added point (in contact: field and gradient); slices 20 -> 200
 // 15.5 -> 123 us, 75 ns per added shaft point (mostly free). The model takes
 // the contact figure, rounded up. docs/algorithms.md, "Frame cost model".
+// With deepestPoints each tracked contact's line search adds about
+// kUsPerContact: the §8.2 procedure's lean (`millsim bench procedure`, same
+// VM) took 54 us p50 with about two contacts, against 21 us for the paper's
+// sum; the model takes the most contacts a frame tracks.
 FrameCostEstimate SurfacePointRenderer::estimateFrameCost(const FrameCostContext&) const {
-  constexpr double kNsPerPoint = 140.0;
+  constexpr double kNsPerPoint = 140.0, kUsPerContact = 16.0;
   const long points = long(sphereVertices.get()) + long(slices.get()) * long(verticesPerSlice.get());
-  return {double(points) * kNsPerPoint * 1e-9,
-          std::to_string(points) + " points (sphereVertices + slices x verticesPerSlice) x " +
-              formatNumber(kNsPerPoint) + " ns",
+  const double contacts = deepestPoints.get() ? double(kMaxPointContacts) : 0.0;
+  std::string model = std::to_string(points) + " points (sphereVertices + slices x verticesPerSlice) x " +
+                      formatNumber(kNsPerPoint) + " ns";
+  if (contacts > 0.0)
+    model += " + up to " + formatNumber(contacts) + " contacts x " + formatNumber(kUsPerContact) + " us";
+  return {double(points) * kNsPerPoint * 1e-9 + contacts * kUsPerContact * 1e-6, model,
           "lower sphereVertices, slices or verticesPerSlice"};
 }
 
