@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """scripts/score-procedure on synthetic section 8.2 logs whose faults are known:
 a smooth run, one with 2 N force noise, one with a torque kick, one with a slow
-loop and one whose shaft shakes. Each fault must cost its criterion, and only it."""
+loop, one whose shaft shakes, and one that rests on 4 N when the loop stops (its
+last row zeroes the output: the loop's, not the renderer's). Each fault must
+cost its criterion, and only it."""
 import csv
 import os
 import subprocess
@@ -14,7 +16,7 @@ HEADER = ("t,x,y,z,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,frame_us,draw_x,draw_y
           "draw_qz,proxy_x,proxy_y,proxy_z,ip_x,ip_y,ip_z,button,removed_mm3,flags,period_us").split(",")
 
 
-def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0, seed=1):
+def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0, rest=None, seed=1):
     rng = np.random.default_rng(seed)
     n = 40000
     t = np.arange(n) * 1e-3
@@ -27,18 +29,25 @@ def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0
     # A watchdog trip with its soft start at 35 s: a loop event, not the renderer's; it must not cost force.
     cols["flags"][35000:35250] = (1 << 9) | (1 << 11)
     cols["fy"][35000] = 0.0
+    if rest is not None:  # leaning in harder over the last half second
+        cols["fy"][-500:] = np.linspace(cols["fy"][-500], rest, 500)
+    # The loop's last row: the device stopped, its output zeroed (SafetyLayer's kSafetyStopped).
+    cols["flags"][-1] = 1 << 12
+    cols["fy"][-1] = 0.0
     np.savetxt(path, np.stack([cols[h] for h in HEADER], 1), delimiter=",", header=",".join(HEADER), comments="")
 
 
 def main():
     script = sys.argv[1]
     with tempfile.TemporaryDirectory() as d:
-        logs = {name: os.path.join(d, name + ".csv") for name in ("smooth", "noisy", "kick", "slow", "shaky")}
+        logs = {name: os.path.join(d, name + ".csv")
+                for name in ("smooth", "noisy", "kick", "slow", "shaky", "resting")}
         write_log(logs["smooth"])
         write_log(logs["noisy"], force_noise=0.2)
         write_log(logs["kick"], kick=0.05)
         write_log(logs["slow"], period_us=1250.0)
         write_log(logs["shaky"], shaft_noise=0.5)
+        write_log(logs["resting"], rest=4.0)
         out = os.path.join(d, "score.csv")
         r = subprocess.run([script, *logs.values(), *sum((["--label", k] for k in logs), []), "--csv", out],
                            capture_output=True, text=True)
@@ -54,6 +63,7 @@ def main():
             "kick": dict(rate=1, force=1, torque=3, shaft=1),
             "slow": dict(rate=3, force=1, torque=1, shaft=1),
             "shaky": dict(rate=1, force=1, torque=1, shaft=3),
+            "resting": dict(rate=1, force=1, torque=1, shaft=1),
         }
         bad = {k: (scores[k], v) for k, v in expected.items() if scores[k] != v}
         if bad:
