@@ -172,8 +172,8 @@ int runPhysical(const PhysicalArgs& a) {
       const auto probe = makeRenderer({type, {}});
       for (const auto& [field, values] : probe->traits().resolutionSweeps)
         for (const std::string& v : values) {
-          const std::string label = field + "=" + v;
-          auto r = measurePhysical({type, {{field, v}}}, a.sweepVoxelMm * 1e-3, cfg);
+          std::string label;
+          auto r = measurePhysical(sweepSpec(type, field, v, label), a.sweepVoxelMm * 1e-3, cfg);
           for (PhysicalRow& row : r) row.resolution = label;
           std::cerr << type << " " << label << " h=" << a.sweepVoxelMm << "mm: force " << pct(r.back().forceRms)
                     << " %, direction " << fmt(r.back().directionRms) << " deg, p50 " << fmt(r.back().p50Us) << " us\n";

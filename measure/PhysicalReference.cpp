@@ -240,59 +240,59 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
   };
   // One SQP run from `start` (the local minimum it reaches).
   auto solveFrom = [&](const Vec6& start) {
-  v = start, active.clear(), activeLambda.clear(), stepConverged = false;
-  for (int it = 0; it < tol.maxIterations; ++it) {
-    iterations = it + 1;
-    cons = gather(material, tool, frameOf(v, device, s, rotate), s, rotate, tol, margin, nullptr);
-    const int m = int(cons.size());
-    Eigen::MatrixXd A(m, 6);
-    Eigen::VectorXd b(m);
-    for (int j = 0; j < m; ++j) A.row(j) = cons[std::size_t(j)].a.transpose();
-    // The QP's Hessian: the Lagrangian's, I − Σλ∇²g with the last multipliers (the surfaces'
-    // curvature; without it a tool wedged against curved walls overshoots), kept positive definite.
-    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Identity();
-    for (std::size_t j = 0; j < active.size(); ++j)
-      H -= activeLambda[j] * clearanceHessian(material, tool, active[j], v, device, s, rotate, tol);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(H);
-    const Eigen::Matrix<double, 6, 6> Hpd =
-        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.05).asDiagonal() * eig.eigenvectors().transpose();
-    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(Hpd);
-    const Eigen::Matrix<double, 6, 6> L = llt.matrixL();
-    // With e = Lᵀd and w = e + L⁻¹v the QP min vᵀd + ½dᵀHd, g + Ad ≥ 0 is the projection
-    // min ½|w|², Ãw ≥ b̃ with Ã = AL⁻ᵀ, b̃ = ÃL⁻¹v − g.
-    const Vec6 linv_v = L.triangularView<Eigen::Lower>().solve(v);
-    Eigen::MatrixXd At(m, 6);
-    for (int j = 0; j < m; ++j) {
-      At.row(j) = L.triangularView<Eigen::Lower>().solve(Vec6(A.row(j).transpose())).transpose();
-      b(j) = At.row(j).dot(linv_v) - cons[std::size_t(j)].g;
+    v = start, active.clear(), activeLambda.clear(), stepConverged = false;
+    for (int it = 0; it < tol.maxIterations; ++it) {
+      iterations = it + 1;
+      cons = gather(material, tool, frameOf(v, device, s, rotate), s, rotate, tol, margin, nullptr);
+      const int m = int(cons.size());
+      Eigen::MatrixXd A(m, 6);
+      Eigen::VectorXd b(m);
+      for (int j = 0; j < m; ++j) A.row(j) = cons[std::size_t(j)].a.transpose();
+      // The QP's Hessian: the Lagrangian's, I − Σλ∇²g with the last multipliers (the surfaces'
+      // curvature; without it a tool wedged against curved walls overshoots), kept positive definite.
+      Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Identity();
+      for (std::size_t j = 0; j < active.size(); ++j)
+        H -= activeLambda[j] * clearanceHessian(material, tool, active[j], v, device, s, rotate, tol);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(H);
+      const Eigen::Matrix<double, 6, 6> Hpd =
+          eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.05).asDiagonal() * eig.eigenvectors().transpose();
+      const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(Hpd);
+      const Eigen::Matrix<double, 6, 6> L = llt.matrixL();
+      // With e = Lᵀd and w = e + L⁻¹v the QP min vᵀd + ½dᵀHd, g + Ad ≥ 0 is the projection
+      // min ½|w|², Ãw ≥ b̃ with Ã = AL⁻ᵀ, b̃ = ÃL⁻¹v − g.
+      const Vec6 linv_v = L.triangularView<Eigen::Lower>().solve(v);
+      Eigen::MatrixXd At(m, 6);
+      for (int j = 0; j < m; ++j) {
+        At.row(j) = L.triangularView<Eigen::Lower>().solve(Vec6(A.row(j).transpose())).transpose();
+        b(j) = At.row(j).dot(linv_v) - cons[std::size_t(j)].g;
+      }
+      // A tiny ridge keeps the dual strictly convex when more contacts than degrees of freedom
+      // are active (a tool wedged in a hole); it lets each constraint miss by 1e-12·λ (≈1e-15 m).
+      const Eigen::MatrixXd Q = At * At.transpose() + 1e-12 * Eigen::MatrixXd::Identity(m, m);
+      lambda = m > 0 ? solveDual(Q, b) : Eigen::VectorXd();
+      const Vec6 wq = m > 0 ? Vec6(At.transpose() * lambda) : Vec6::Zero();
+      const Vec6 next = v + Vec6(L.transpose().triangularView<Eigen::Upper>().solve(Vec6(wq - linv_v)));
+      active.clear(), activeLambda.clear();
+      for (int j = 0; j < m; ++j)
+        if (lambda(j) > 0.0) active.push_back(cons[std::size_t(j)]), activeLambda.push_back(lambda(j));
+      // Backtrack on the exact-penalty merit ½|v|² + μ·(deepest penetration), μ above the
+      // multipliers' sum: a safeguard where the clamped Hessian still misjudges the
+      // curvature (a convex rim) or a constraint outside the margin comes into play.
+      const double mu = 2.0 * (m > 0 ? lambda.sum() : 0.0) + 1e-12;
+      auto merit = [&](const Vec6& w) { return 0.5 * w.squaredNorm() + mu * violationAt(w); };
+      const double m0 = merit(v);
+      Vec6 trial = next;
+      for (double alpha = 1.0; alpha > 1e-6; alpha *= 0.5) {
+        trial = v + alpha * (next - v);
+        if (merit(trial) <= m0 + 1e-20) break;
+      }
+      const double step = (trial - v).norm();
+      v = trial;
+      if (step < tol.step) {
+        stepConverged = true;
+        break;
+      }
     }
-    // A tiny ridge keeps the dual strictly convex when more contacts than degrees of freedom
-    // are active (a tool wedged in a hole); it lets each constraint miss by 1e-12·λ (≈1e-15 m).
-    const Eigen::MatrixXd Q = At * At.transpose() + 1e-12 * Eigen::MatrixXd::Identity(m, m);
-    lambda = m > 0 ? solveDual(Q, b) : Eigen::VectorXd();
-    const Vec6 wq = m > 0 ? Vec6(At.transpose() * lambda) : Vec6::Zero();
-    const Vec6 next = v + Vec6(L.transpose().triangularView<Eigen::Upper>().solve(Vec6(wq - linv_v)));
-    active.clear(), activeLambda.clear();
-    for (int j = 0; j < m; ++j)
-      if (lambda(j) > 0.0) active.push_back(cons[std::size_t(j)]), activeLambda.push_back(lambda(j));
-    // Backtrack on the exact-penalty merit ½|v|² + μ·(deepest penetration), μ above the
-    // multipliers' sum: a safeguard where the clamped Hessian still misjudges the
-    // curvature (a convex rim) or a constraint outside the margin comes into play.
-    const double mu = 2.0 * (m > 0 ? lambda.sum() : 0.0) + 1e-12;
-    auto merit = [&](const Vec6& w) { return 0.5 * w.squaredNorm() + mu * violationAt(w); };
-    const double m0 = merit(v);
-    Vec6 trial = next;
-    for (double alpha = 1.0; alpha > 1e-6; alpha *= 0.5) {
-      trial = v + alpha * (next - v);
-      if (merit(trial) <= m0 + 1e-20) break;
-    }
-    const double step = (trial - v).norm();
-    v = trial;
-    if (step < tol.step) {
-      stepConverged = true;
-      break;
-    }
-  }
   };
   struct Run {
     Vec6 v;
@@ -326,18 +326,17 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
     if (runs[r].v.squaredNorm() < runs[best].v.squaredNorm() * (1.0 - 1e-9)) best = r;
   auto report = [&](const Run& run) {
     PhysicalPose out;
-    v = run.v, lambda = run.lambda, cons = run.cons, stepConverged = run.stepConverged;
     out.iterations = run.iterations;
-    out.violation = violationAt(v);
+    out.violation = violationAt(run.v);
 
-    const Frame fr = frameOf(v, device, s, rotate);
+    const Frame fr = frameOf(run.v, device, s, rotate);
     out.pose = Pose{fr.x, fr.R};
     out.force = metric.k * (fr.x - device.position);
     glm::dvec3 sumF(0.0), sumT(0.0);
-    for (std::size_t j = 0; j < cons.size(); ++j) {
-      const double mu = metric.k * lambda(Eigen::Index(j));
+    for (std::size_t j = 0; j < run.cons.size(); ++j) {
+      const double mu = metric.k * run.lambda(Eigen::Index(j));
       if (!(mu > 0.0)) continue;
-      const Constraint& c = cons[j];
+      const Constraint& c = run.cons[j];
       ReferenceContact rc;
       rc.normal = c.normal;
       rc.point = c.centre - material.pieces[std::size_t(c.piece)](c.centre) * c.normal;
@@ -350,7 +349,7 @@ PhysicalPose constrainedPose(const Material& material, const ToolGeometry& tool,
     const double fn = glm::length(out.force);
     out.stationarity = (glm::length(out.force - sumF) + glm::length(out.torque - sumT) / tool.shaftLength) /
                        std::max(fn, 1e-3);
-    out.converged = stepConverged && out.violation <= tol.violation &&
+    out.converged = run.stepConverged && out.violation <= tol.violation &&
                     out.stationarity <= tol.stationarity;
     if (fn > 0.0) {
       out.actionAxis = out.force / fn;

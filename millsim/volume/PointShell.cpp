@@ -261,7 +261,6 @@ glm::dvec3 PointShell::ontoSurface(const Fine& fine, glm::dvec3 at, const glm::d
   return at;  // still inside s voxels out: as far as the block's stencil allows
 }
 
-
 template <class Fine>
 int PointShell::makePoints(const Fine& fine, float v, const float n[6], int I, int J, int K, ShellPoint out[2]) const {
   if (v <= iso_) return 0;
