@@ -36,6 +36,14 @@ public:
   virtual double field(const glm::dvec3& world) const = 0;
   virtual glm::dvec3 gradient(const glm::dvec3& world) const = 0;
   bool inside(const glm::dvec3& world) const { return field(world) > 0.0; }
+  // False only when nothing sampled within `radius` (m) of a world point can be
+  // inside material: a cheap cull (a lookup per volume) before sampling a
+  // region the tool may be far from. True when in doubt.
+  virtual bool mayHaveMaterialNear(const glm::dvec3& world, double radius) const {
+    (void)world;
+    (void)radius;
+    return true;
+  }
   // Unit outward normal at a point near the surface (zero if undefined).
   glm::dvec3 outwardNormal(const glm::dvec3& world) const;
   // Smallest voxel edge in world units: the natural step for searches.

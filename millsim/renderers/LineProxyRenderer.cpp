@@ -1,14 +1,18 @@
 #include "millsim/renderers/LineProxyRenderer.h"
 
 #include <algorithm>
-#include <stdexcept>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/renderers/DeepestPoint.h"
 #include "millsim/renderers/ProxyPoint.h"
 
 namespace millsim {
@@ -25,6 +29,7 @@ public:
     double feedResistance;
     ToolGeometry tool;
     bool burrSurface;  // the tip proxy keeps the burr's surface out (else the paper's centre vertex)
+    bool shaftSurface;  // the shaft's deepest line pushes, force and torque (else the paper's torque only)
   };
 
   LineProxyAlgorithm(const Params& p, int proxyIterations)
@@ -41,6 +46,14 @@ public:
     while (firstShaftVertex_ < p.vertices - 1 &&
            p.tool.shaftLength * double(firstShaftVertex_) / double(p.vertices - 1) < p.tool.tipRadius)
       ++firstShaftVertex_;
+    // The shaft's surface: from where it leaves the burr sphere to its end.
+    const double r = p.tool.tipRadius, rho = p.tool.shaftRadius;
+    shaftY0_ = std::min(std::sqrt(std::max(0.0, r * r - rho * rho)), p.tool.shaftLength);
+    // The seeds are kRing points round each centreline vertex, on a cylinder
+    // grown so that a face touching the shaft anywhere between two vertices and
+    // two ring points is inside one of them (as SurfacePointRenderer's seeds).
+    const double along = 0.5 * p.tool.shaftLength / double(std::max(1, p.vertices - 1));
+    shaftGrow_ = (rho + along) / std::cos(std::numbers::pi / kRing) - rho;
   }
 
   std::string name() const override { return "LineProxyRenderer"; }
@@ -52,6 +65,7 @@ public:
     cutting_ = false;
     prevDir_ = device.shaftDirection();
     shaftContact_ = false;
+    shaftLine_ = ShaftLine{};
     lastDrawn_ = device;
   }
 
@@ -66,6 +80,7 @@ public:
     cutCentre_ = p->cutCentre_;
     prevDir_ = p->prevDir_;
     shaftContact_ = p->shaftContact_;
+    shaftLine_ = p->shaftLine_;
     lastDrawn_ = p->lastDrawn_;
   }
 
@@ -103,7 +118,65 @@ public:
       out.contacts = 1;
     }
 
-    // The shaft, translated to the tip's proxy (t_offset in Fig. 6).
+    // §4.5, eq. 12–13: the drawn burr. With BurrField the proxy already is
+    // the burr's centre; the paper's centre vertex sits on the surface and the
+    // burr is drawn a radius out. The shaft is translated to the tip's proxy
+    // (t_offset in Fig. 6).
+    glm::dvec3 drawTip = c;
+    if (tipContact) drawTip = p_.burrSurface ? proxyPoint : proxyPoint + tipNormal * p_.tool.tipRadius;
+    const glm::dvec3 drawDir = p_.shaftSurface ? shaftSurface(scene, device, proxyPoint, out)
+                                               : shaftCentreline(scene, proxyPoint, dir, drawTip, out);
+    out.drawnTool.position = drawTip;
+    out.drawnTool.orientation = rotationBetween(dir, drawDir) * device.orientation;
+    // Only the burr of a tip in contact cuts: a free burr is drawn at the
+    // device, where it overlaps material its centre vertex cannot feel, and
+    // cutting there would clear the surface before the proxy ever met it. In
+    // contact the burr advances into the surface at the feed speed
+    // |F| / (feedResistance · hardness), never deeper than the probe.
+    // The advance accumulates while milling: the coverage stamp is
+    // idempotent, so a burr that only ever reached one frame's feed past the
+    // tangent position would stop cutting once that thin layer is gone.
+    out.burrCuts = tipContact;
+    out.burrCentre = drawTip;
+    // Depth is measured from the current tangent position, so when the
+    // proxy follows the receding surface the burr does not advance twice.
+    if (tipContact && in.milling) {
+      // The burr advances the way the hand pushes it (the spring's direction),
+      // not along the contact normal: in the burr's own round pit the normal
+      // hops between points of the rim, and measured along it the advance so
+      // far read as none (the proxy slid up the pit's side), so #1 cut one
+      // frame's feed and no more: 0.007 mm³ in the default lesson's milling.
+      const double pushed = glm::length(proxyPoint - c);
+      const glm::dvec3 n = pushed > 0.0 ? (proxyPoint - c) / pushed : tipNormal;
+      const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
+      // Harder tissue at the burr's leading point gives way more slowly.
+      const double hardness =
+          scene.hardness(drawTip - n * (previous + p_.tool.tipRadius + 0.5 * scene.voxelSize()));
+      const double feed = hardness > 0.0 ? glm::length(out.force) / (p_.feedResistance * hardness) * in.dt : 0.0;
+      out.cutHardness = hardness;
+      const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
+      out.burrCentre = drawTip - n * depth;
+      cutCentre_ = out.burrCentre;
+      cutting_ = true;
+    } else {
+      cutting_ = false;
+    }
+
+    prevTip_ = proxyPoint;
+    prevDir_ = dir;
+    sanitize(out, device);
+    lastDrawn_ = out.drawnTool;
+    return out;
+  }
+
+private:
+  // The paper's shaft (§4.3): centreline vertices; their intersection point,
+  // found by the fraction method (eq. 1–4) on first contact and then tracked
+  // by the probe–proxy algorithm, gives torque only (eq. 7–11). Returns the
+  // drawn shaft's direction: offset by the shaft radius along the normal at
+  // the intersection (§4.5, eq. 12–13).
+  glm::dvec3 shaftCentreline(const HapticScene& scene, const glm::dvec3& proxyPoint, const glm::dvec3& dir,
+                             const glm::dvec3& drawTip, HapticOutput& out) {
     int colliding = 0;
     double deepest = 0.0;
     glm::dvec3 deepestVertex(0.0);
@@ -128,68 +201,85 @@ public:
       // probe–proxy algorithm, the last intersection point its proxy.
       shaft_.update(scene, deepestVertex);
     }
-
-    if (shaftContact_) {
-      const glm::dvec3 ip = shaft_.position();
-      const glm::dvec3 r = ip - proxyPoint;                                    // eq. 7
-      const glm::dvec3 ipProbe = proxyPoint + glm::length(r) * dir;            // eq. 8
-      const glm::dvec3 g = ip - ipProbe;                                       // eq. 9
-      const glm::dvec3 reaction = p_.k * g;                                    // eq. 10
-      out.torque = glm::cross(r, reaction);                                    // eq. 11
-      out.hasIntersection = true;
-      out.intersection = ip;
-      out.contacts += colliding;
-    }
-
-    // §4.5, eq. 12–13: draw the tool offset by the radii along the normals.
-    // With BurrField the proxy already is the burr's centre; the paper's
-    // centre vertex sits on the surface and the burr is drawn a radius out.
-    glm::dvec3 drawTip = c;
-    if (tipContact) drawTip = p_.burrSurface ? proxyPoint : proxyPoint + tipNormal * p_.tool.tipRadius;
-    glm::dvec3 drawDir = dir;
-    if (shaftContact_) {
-      const glm::dvec3 ipOffset = out.intersection + scene.outwardNormal(out.intersection) * p_.tool.shaftRadius;
-      const glm::dvec3 axis = ipOffset - drawTip;
-      if (glm::length(axis) > 1e-9) drawDir = glm::normalize(axis);
-    }
-    out.drawnTool.position = drawTip;
-    out.drawnTool.orientation = rotationBetween(dir, drawDir) * device.orientation;
-    // Only the burr of a tip in contact cuts: a free burr is drawn at the
-    // device, where it overlaps material its centre vertex cannot feel, and
-    // cutting there would clear the surface before the proxy ever met it. In
-    // contact the burr advances into the surface at the feed speed
-    // |F| / (feedResistance · hardness), never deeper than the probe.
-    // The advance accumulates while milling: the coverage stamp is
-    // idempotent, so a burr that only ever reached one frame's feed past the
-    // tangent position would stop cutting once that thin layer is gone.
-    out.burrCuts = tipContact;
-    out.burrCentre = drawTip;
-    // Depth is measured from the current tangent position, so when the
-    // proxy follows the receding surface the burr does not advance twice.
-    if (tipContact && in.milling) {
-      const glm::dvec3 n = tipNormal;
-      const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
-      // Harder tissue at the burr's leading point gives way more slowly.
-      const double hardness =
-          scene.hardness(drawTip - n * (previous + p_.tool.tipRadius + 0.5 * scene.voxelSize()));
-      const double feed = hardness > 0.0 ? glm::length(out.force) / (p_.feedResistance * hardness) * in.dt : 0.0;
-      out.cutHardness = hardness;
-      const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
-      out.burrCentre = drawTip - n * depth;
-      cutCentre_ = out.burrCentre;
-      cutting_ = true;
-    } else {
-      cutting_ = false;
-    }
-
-    prevTip_ = proxyPoint;
-    prevDir_ = dir;
-    sanitize(out, device);
-    lastDrawn_ = out.drawnTool;
-    return out;
+    if (!shaftContact_) return dir;
+    const glm::dvec3 ip = shaft_.position();
+    const glm::dvec3 r = ip - proxyPoint;                                    // eq. 7
+    const glm::dvec3 ipProbe = proxyPoint + glm::length(r) * dir;            // eq. 8
+    const glm::dvec3 g = ip - ipProbe;                                       // eq. 9
+    const glm::dvec3 reaction = p_.k * g;                                    // eq. 10
+    out.torque = glm::cross(r, reaction);                                    // eq. 11
+    out.hasIntersection = true;
+    out.intersection = ip;
+    out.contacts += colliding;
+    const glm::dvec3 ipOffset = ip + scene.outwardNormal(ip) * p_.tool.shaftRadius;
+    const glm::dvec3 axis = ipOffset - drawTip;
+    return glm::length(axis) > 1e-9 ? glm::normalize(axis) : dir;
   }
 
-private:
+  // The shaft felt at its surface (the default; docs/algorithms.md, Algorithm
+  // #1): its deepest line in material — the radial line out of the axis where
+  // material comes nearest the axis, found from the vertices' ring seeds and
+  // tracked from frame to frame — pushes the tool out by k times the depth,
+  // force and torque, as the shaft of a rigid tool pressed on a rim is pushed.
+  // The paper's centreline met material only once the shaft had sunk its
+  // radius, and its reaction turned the hand without pushing it (100 % force
+  // error with the shaft on an edge). Returns the drawn shaft's direction:
+  // the device's. The push is felt, not drawn: turning the drawn tool about
+  // its tip until the shaft is out (eq. 12–13) divides the depth by the
+  // contact's height, and a contact just above the burr, on its own pit's rim,
+  // turned the drawn tool 10° in a frame in the §8.2 procedure.
+  glm::dvec3 shaftSurface(const HapticScene& scene, const Pose& device, const glm::dvec3& tip, HapticOutput& out) {
+    const glm::dmat3 R = glm::mat3_cast(device.orientation);
+    const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
+    const double h = scene.voxelSize(), rho = p_.tool.shaftRadius, y1 = p_.tool.shaftLength;
+    auto refine = [&](ShaftLine line) {
+      line.t = deepestOnShaft(scene, tip, R, rho, shaftY0_, y1, line.y, line.phi, line.t);
+      line.active = rho - line.t > -h;  // within a voxel of touching: still tracked
+      return line;
+    };
+    // The tracked line first, searched near where it was (tracking mode, t < rho).
+    ShaftLine line;
+    if (shaftLine_.active) {
+      line = shaftLine_;
+      line.t = std::min(line.t, 0.999 * rho);
+      line = refine(line);
+    }
+    // Not touching: seed from the ring point deepest in material, if any.
+    if (!(line.active && rho - line.t > 0.0)) {
+      double best = 0.0;
+      ShaftLine seed;
+      for (int i = firstShaftVertex_; i < p_.vertices; ++i) {
+        const double y = p_.tool.shaftLength * double(i) / double(p_.vertices - 1);
+        if (y < shaftY0_) continue;
+        // Most of the shaft is far from everything: one lookup skips its ring.
+        if (!scene.mayHaveMaterialNear(tip + y * axis, rho + shaftGrow_)) continue;
+        for (int j = 0; j < kRing; ++j) {
+          const double phi = 2.0 * std::numbers::pi * j / kRing;
+          const double s =
+              scene.field(tip + y * axis + (rho + shaftGrow_) * (R * glm::dvec3(std::cos(phi), 0.0, std::sin(phi))));
+          if (s > best) best = s, seed = ShaftLine{y, phi, rho, true};
+        }
+      }
+      if (seed.active) {
+        seed = refine(seed);
+        if (seed.active && (!line.active || seed.t < line.t)) line = seed;
+      }
+    }
+    shaftLine_ = line;
+    const double depth = rho - line.t;
+    shaftContact_ = line.active && depth > 0.0;
+    if (!shaftContact_) return device.shaftDirection();
+    const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
+    const glm::dvec3 point = tip + line.y * axis + line.t * w;  // on the material's surface
+    const glm::dvec3 push = p_.k * depth * -w;
+    out.force += push;
+    out.torque += glm::cross(point - tip, push);
+    out.hasIntersection = true;
+    out.intersection = point;
+    out.contacts += 1;
+    return axis;
+  }
+
   glm::dvec3 vertex(const glm::dvec3& tip, const glm::dvec3& dir, int i) const {
     return tip + dir * (p_.tool.shaftLength * double(i) / double(p_.vertices - 1));
   }
@@ -263,6 +353,15 @@ private:
   glm::dvec3 cutCentre_{0.0};
   glm::dvec3 prevDir_{0.0, 1.0, 0.0};
   bool shaftContact_ = false;
+  // The shaft's tracked deepest line (shaftSurface): its height on the axis,
+  // angle round it and where it crosses into material (from the axis).
+  struct ShaftLine {
+    double y = 0.0, phi = 0.0, t = 0.0;
+    bool active = false;
+  };
+  static constexpr int kRing = 8;  // seeds round each centreline vertex
+  ShaftLine shaftLine_;
+  double shaftY0_ = 0.0, shaftGrow_ = 0.0;
   Pose lastDrawn_;
   std::vector<double> before_, after_;  // vertex values at search steps n−1 and n (preallocated)
 };
@@ -287,7 +386,7 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
   return std::make_unique<LineProxyAlgorithm>(
       LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
                                  double(springConstant.get()), double(feedResistance.get()), tool,
-                                 feelBurrSurface.get()},
+                                 feelBurrSurface.get(), feelShaftSurface.get()},
       proxyIterations.get());
 }
 

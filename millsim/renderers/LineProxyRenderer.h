@@ -5,6 +5,8 @@
 // the fraction method (eq. 1–4) on first contact and then tracked by the
 // probe–proxy algorithm (§4.3.2), gives the torque (eq. 7–11). The drawn tool
 // is offset from the proxies by the radii along the surface normal (eq. 12–13).
+// By default the burr and the shaft are felt at their surfaces, and the shaft
+// pushes as well as turns (feelBurrSurface, feelShaftSurface; docs/algorithms.md).
 #include "millsim/haptics/HapticsRenderer.h"
 
 namespace millsim {
@@ -30,6 +32,11 @@ public:
   SFBool feelBurrSurface{this, "feelBurrSurface", Access::InitializeOnly, true,
                          "Hold the burr's surface out of material (its centre's proxy on the scene dilated by "
                          "tipRadius); false: the paper's centre vertex, felt only once the centre is inside."};
+
+  SFBool feelShaftSurface{this, "feelShaftSurface", Access::InitializeOnly, true,
+                          "Feel the shaft's surface: its deepest line in material pushes the tool out by "
+                          "springConstant times its depth (force and torque); false: the paper's centreline "
+                          "vertices, felt once the shaft has sunk its radius, and torque only (eq. 7-11)."};
 
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr advances into material at force / feedResistance (N·s/m).",

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include "millsim/volume/PlacedVolumes.h"
@@ -33,8 +34,20 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
   const glm::dvec3 offset = glm::dvec3(worldToLocal[3]) * inv + vox.localToIndex(glm::dvec3(0.0));
   const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(m))));
   const bool millable = node ? node->millable.get() : true;
+  // The largest stretch of lin: the square root of linᵀ·lin's largest
+  // eigenvalue, by power iteration (a radius in metres is at most this many voxels).
+  const glm::dmat3 ltl = glm::transpose(lin) * lin;
+  glm::dvec3 e(1.0, 0.7, 0.4);
+  double stretch2 = 0.0;
+  for (int i = 0; i < 50 && glm::length(e) > 0.0; ++i) {
+    const glm::dvec3 next = ltl * glm::normalize(e);
+    stretch2 = glm::length(next);
+    e = next;
+  }
+  const double indexPerWorld = 1.001 * std::sqrt(stretch2);
   volumes_.push_back(std::unique_ptr<Volume>(new Volume{node, millable, &vox, Placement{m, worldToLocal, iso, scale},
-                                                        lin, offset, VolumeSampler(vox),
+                                                        lin, offset, indexPerWorld, VolumeSampler(vox),
+                                                        MaterialBlocks(vox),
                                                         Miller(vox, float(iso), tissues), tissues,
                                                         DirtyBlocks(vox.dims())}));
   const glm::dvec3 h = vox.voxelSize() * scale;
@@ -49,6 +62,14 @@ double VoxelScene::field(const glm::dvec3& world) const {
     best = std::max(best, double(v->sampler.density(idx)) - v->placement.iso);
   }
   return volumes_.empty() ? -1.0 : best;
+}
+
+bool VoxelScene::mayHaveMaterialNear(const glm::dvec3& world, double radius) const {
+  for (const auto& v : volumes_)
+    if (v->material.mayHaveMaterialNear(v->worldToIndexLinear * world + v->worldToIndexOffset,
+                                        radius * v->indexPerWorld))
+      return true;
+  return false;
 }
 
 glm::dvec3 VoxelScene::gradient(const glm::dvec3& world) const {

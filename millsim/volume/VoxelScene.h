@@ -14,6 +14,7 @@
 
 #include "millsim/haptics/HapticScene.h"
 #include "millsim/volume/DirtyBlocks.h"
+#include "millsim/volume/MaterialBlocks.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/VolumeSampler.h"
 
@@ -35,7 +36,9 @@ public:
     Placement placement;
     glm::dmat3 worldToIndexLinear;  // the linear part of world → index
     glm::dvec3 worldToIndexOffset;
+    double indexPerWorld;  // the largest stretch of worldToIndexLinear (voxels per metre)
     VolumeSampler sampler;
+    MaterialBlocks material;  // where material may be, for mayHaveMaterialNear
     Miller miller;
     const TissueMap* tissues;  // null: one material of hardness 1
     // The 8³ blocks changed by the latest mill() call that changed this
@@ -68,6 +71,7 @@ public:
   const Placement& placement(std::size_t i) const override { return volumes_[i]->placement; }
   double field(const glm::dvec3& world) const override;
   glm::dvec3 gradient(const glm::dvec3& world) const override;
+  bool mayHaveMaterialNear(const glm::dvec3& world, double radius) const override;
   double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
   // Merges the milling the shell has not seen yet (see Shell), then returns it.
   const PointShell& pointShell(std::size_t volume, int scale) override;

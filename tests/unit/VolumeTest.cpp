@@ -7,6 +7,7 @@
 #include <thread>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/Milling.h"
@@ -457,4 +458,35 @@ TEST(BlockChannel, GraphicsReplicaFollowsMillingOnAnotherThread) {
   graphics.join();
   EXPECT_GT(applied, 0u);
   EXPECT_EQ(replica.volume().contentHash(), v.contentHash());
+}
+
+// HapticScene::mayHaveMaterialNear is a cull: wherever it says no, nothing
+// sampled within the radius is material; and it does say no far from the
+// tooth. Each point is probed at the largest radius it still says no for,
+// where a bound too loose would show first. A rotated, scaled placement
+// checks its metres-to-voxels bound.
+TEST(MaterialBlocks, SaysNoOnlyWhereNothingWithinTheRadiusIsMaterial) {
+  VoxelVolume tooth = makeToothPhantom({{64, 64, 44}, 0.4e-3, false});
+  VoxelScene scene;
+  const glm::dmat4 place = glm::scale(glm::rotate(glm::dmat4(1.0), 0.7, glm::normalize(glm::dvec3(1, 2, 3))),
+                                      glm::dvec3(0.8));
+  scene.addVolume(tooth, place, 700.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> box(-0.025, 0.025), unit(-1.0, 1.0);
+  int no = 0;
+  for (int i = 0; i < 300; ++i) {
+    const glm::dvec3 p(box(rng), box(rng), box(rng));
+    if (scene.mayHaveMaterialNear(p, 0.0)) continue;
+    ++no;
+    double lo = 0.0, hi = 0.03;  // the largest radius it says no for, by bisection
+    for (int k = 0; k < 30; ++k) (scene.mayHaveMaterialNear(p, 0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+    for (int k = 0; k < 400; ++k) {
+      const glm::dvec3 u(unit(rng), unit(rng), unit(rng));
+      if (glm::length(u) > 1.0 || glm::length(u) < 1e-3) continue;
+      const glm::dvec3 q = p + lo * (k % 4 ? glm::normalize(u) : u);  // mostly on the sphere, some inside
+      ASSERT_LE(scene.field(q), 0.0) << "material " << glm::length(q - p) << " m from a point said to have none within " << lo;
+    }
+  }
+  EXPECT_GT(no, 60) << "the cull should say no for much of the space round the tooth";
+  EXPECT_TRUE(scene.mayHaveMaterialNear(glm::dvec3(place * glm::dvec4(0.0, 0.0, 0.0, 1.0)), 0.0));
 }
