@@ -155,6 +155,14 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     if (!isFinite(next)) break;
     if (params_.refuseSinkingSlides && field.value(next) > 0.0 && field.outwardNormal(next) == glm::dvec3(0.0))
       break;  // every shorter slide sank too: stay
+    if (params_.descentOnly) {
+      const double before = glm::length(probe - proxy_), gain = 1e-3 * h;
+      for (int k = 0; k < 4 && isFinite(next) && !(glm::length(probe - next) < before - gain); ++k) {
+        move *= 0.5;
+        next = projectToSurface(field, proxy_ + move, maxStep);
+      }
+      if (!isFinite(next) || !(glm::length(probe - next) < before - gain)) break;  // no nearer point: stay
+    }
     proxy_ = next;
   }
   // Milling may have removed the material under the proxy: follow the
