@@ -89,10 +89,12 @@ double fieldValue(const HapticsRendererNode& n, const std::vector<std::string>& 
 
 // `proxyRadius` (Proxy): how far from the surface the proxy is held — 0 for
 // the paper's centre vertex, the burr radius for a proxy that feels the burr's
-// surface (LineProxyRenderer's default, feelBurrSurface).
+// surface (LineProxyRenderer's default, feelBurrSurface). `shaftSurface`
+// (Proxy): the shaft's deepest point pushes k times its depth past the
+// shaft's radius (feelShaftSurface) instead of eq. 7–11's torque only.
 Reference reference(ReferenceKind kind, const Sdf& f, const ProbePose& pp, const ToolGeometry& tool, double k,
-                    double proxyRadius = 0.0, int sphereQuadrature = 4000, int sliceQuadrature = 200,
-                    int ringQuadrature = 32) {
+                    double proxyRadius = 0.0, bool shaftSurface = false, int sphereQuadrature = 4000,
+                    int sliceQuadrature = 200, int ringQuadrature = 32) {
   Reference ref;
   const glm::dvec3 c = pp.device.position, dir = pp.device.shaftDirection();
   // The burr touching the exact surface on the approach path (drawn tool, coupling).
@@ -111,7 +113,25 @@ Reference reference(ReferenceKind kind, const Sdf& f, const ProbePose& pp, const
       if (s < deepest) deepest = s, tBest = t;
     }
     double shaftReaction = 0.0;
-    if (deepest < 0.0) {
+    if (shaftSurface) {
+      // The shaft's surface, from where it leaves the burr sphere: its
+      // deepest point pushes along the surface's normal there.
+      const double y0 = std::sqrt(std::max(0.0, tool.tipRadius * tool.tipRadius - tool.shaftRadius * tool.shaftRadius));
+      double least = tool.shaftRadius, tLeast = 0.0;
+      for (int i = 0; i <= n; ++i) {
+        const double t = y0 + (tool.shaftLength - y0) * i / n, s = f(proxy + dir * t);
+        if (s < least) least = s, tLeast = t;
+      }
+      if (least < tool.shaftRadius) {
+        const glm::dvec3 axis = proxy + dir * tLeast, normal = glm::normalize(gradient(f, axis));
+        const glm::dvec3 push = k * (tool.shaftRadius - least) * normal;
+        const glm::dvec3 r = axis - least * normal - proxy;  // the surface point nearest the axis
+        ref.force += push;
+        ref.torque = glm::cross(r, push);
+        shaftReaction = glm::length(push);
+        ref.lever = glm::length(r);
+      }
+    } else if (deepest < 0.0) {
       const glm::dvec3 ip = closestPoint(f, proxy + dir * tBest);
       const glm::dvec3 r = ip - proxy, g = ip - (proxy + glm::length(r) * dir);
       ref.torque = glm::cross(r, k * g);
@@ -250,6 +270,8 @@ std::vector<AccuracyRow> measureAccuracy(const RendererSpec& spec, double h, con
   // proxy against the surface dilated by the burr (the radius, not the
   // measured offset, which is only resolved to 0.01 h).
   const double proxyRadius = tipOffset > 0.5 * tool.tipRadius ? tool.tipRadius : 0.0;
+  const Field* shaftField = node->field("feelShaftSurface");
+  const bool shaftSurface = shaftField && shaftField->toString() == "true";
   std::vector<AccuracyRow> rows;
   Samples all;
   for (const std::string& name : cfg.scenes) {
@@ -257,7 +279,7 @@ std::vector<AccuracyRow> measureAccuracy(const RendererSpec& spec, double h, con
     const Sdf& f = scene->shape.distance;
     Samples s;
     for (const ProbePose& pp : poses(name, h, cfg, tipOffset, shaftOffset)) {
-      const Reference ref = reference(kind, f, pp, tool, k, proxyRadius);
+      const Reference ref = reference(kind, f, pp, tool, k, proxyRadius, shaftSurface);
       if (!ref.valid) continue;
       ++s.poses;
       auto algorithm = node->compile(tool, *scene->scene);
