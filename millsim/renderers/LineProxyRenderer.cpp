@@ -1,6 +1,7 @@
 #include "millsim/renderers/LineProxyRenderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -54,6 +55,10 @@ public:
     // two ring points is inside one of them (as SurfacePointRenderer's seeds).
     const double along = 0.5 * p.tool.shaftLength / double(std::max(1, p.vertices - 1));
     shaftGrow_ = (rho + along) / std::cos(std::numbers::pi / kRing) - rho;
+    for (int j = 0; j < kRing; ++j) {
+      const double phi = 2.0 * std::numbers::pi * j / kRing;
+      ring_[std::size_t(j)] = {phi, glm::dvec3(std::cos(phi), 0.0, std::sin(phi))};
+    }
   }
 
   std::string name() const override { return "LineProxyRenderer"; }
@@ -227,7 +232,7 @@ private:
   // the device's. The push is felt, not drawn: turning the drawn tool about
   // its tip until the shaft is out (eq. 12–13) divides the depth by the
   // contact's height, and a contact just above the burr, on its own pit's rim,
-  // turned the drawn tool 10° in a frame in the §8.2 procedure.
+  // turned the drawn tool 7.6° in a frame in the §8.2 procedure.
   glm::dvec3 shaftSurface(const HapticScene& scene, const Pose& device, const glm::dvec3& tip, HapticOutput& out) {
     const glm::dmat3 R = glm::mat3_cast(device.orientation);
     const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
@@ -253,11 +258,9 @@ private:
         if (y < shaftY0_) continue;
         // Most of the shaft is far from everything: one lookup skips its ring.
         if (!scene.mayHaveMaterialNear(tip + y * axis, rho + shaftGrow_)) continue;
-        for (int j = 0; j < kRing; ++j) {
-          const double phi = 2.0 * std::numbers::pi * j / kRing;
-          const double s =
-              scene.field(tip + y * axis + (rho + shaftGrow_) * (R * glm::dvec3(std::cos(phi), 0.0, std::sin(phi))));
-          if (s > best) best = s, seed = ShaftLine{y, phi, rho, true};
+        for (const RingSeed& r : ring_) {
+          const double s = scene.field(tip + y * axis + (rho + shaftGrow_) * (R * r.local));
+          if (s > best) best = s, seed = ShaftLine{y, r.phi, rho, true};
         }
       }
       if (seed.active) {
@@ -360,6 +363,11 @@ private:
     bool active = false;
   };
   static constexpr int kRing = 8;  // seeds round each centreline vertex
+  struct RingSeed {
+    double phi;
+    glm::dvec3 local;  // (cos phi, 0, sin phi): the radial direction in the tool's frame
+  };
+  std::array<RingSeed, kRing> ring_{};
   ShaftLine shaftLine_;
   double shaftY0_ = 0.0, shaftGrow_ = 0.0;
   Pose lastDrawn_;

@@ -31,9 +31,10 @@ MaterialBlocks::MaterialBlocks(const VoxelVolume& volume)
   for (; it; ++it) {
     if (!(*it > volume.airValue())) continue;
     const openvdb::CoordBBox box = it.getBoundingBox();
-    for (int z = std::max(0, box.min().z() >> 3); z <= std::min(blocks_.z - 1, box.max().z() >> 3); ++z)
-      for (int y = std::max(0, box.min().y() >> 3); y <= std::min(blocks_.y - 1, box.max().y() >> 3); ++y)
-        for (int x = std::max(0, box.min().x() >> 3); x <= std::min(blocks_.x - 1, box.max().x() >> 3); ++x)
+    constexpr int s = DirtyBlocks::kLog2;
+    for (int z = std::max(0, box.min().z() >> s); z <= std::min(blocks_.z - 1, box.max().z() >> s); ++z)
+      for (int y = std::max(0, box.min().y() >> s); y <= std::min(blocks_.y - 1, box.max().y() >> s); ++y)
+        for (int x = std::max(0, box.min().x() >> s); x <= std::min(blocks_.x - 1, box.max().x() >> s); ++x)
           if (distance_[index(x, y, z)] != 0) distance_[index(x, y, z)] = 0, queue.emplace_back(x, y, z);
   }
   while (!queue.empty()) {

@@ -1,6 +1,7 @@
 // Issue 14's must-hold contract on the shipped lessons, for every renderer in
-// the registry: the drawn tool turns only with the device, and in the default
-// lesson's lean the hole's wall pushes the shaft back out.
+// the registry: the drawn tool turns only with the device, in the default
+// lesson's lean the hole's wall pushes the shaft back out, and the §8.2
+// procedure is felt without shaking.
 #include <gtest/gtest.h>
 
 #include <algorithm>
