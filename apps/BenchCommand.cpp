@@ -139,7 +139,7 @@ struct PhysicalArgs {
   std::vector<double> voxelMm{0.2, 0.1, 0.05};
   double sweepVoxelMm = 0.0;  // > 0: also each resolution field's values at this voxel size
   bool quick = false, ownLaw = true;
-  std::string csv, md;
+  std::string csv, md, poses;
 };
 
 // Each renderer at its defaults against the physical reference (measure/Physical.h),
@@ -150,6 +150,12 @@ int runPhysical(const PhysicalArgs& a) {
   PhysicalConfig cfg;
   AccuracyConfig own;
   if (a.quick) cfg.phases = 1, own.depths = 3, own.tiltsDeg = {0, 30, 60}, own.phases = 1, own.settleFrames = 10;
+  std::ofstream poses;
+  if (!a.poses.empty()) {
+    poses = openOut(a.poses);
+    poses << physicalPoseCsvHeader() << "\n";
+    cfg.poses = &poses;
+  }
   const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
   std::vector<PhysicalRow> rows, sweepRows;
   std::map<std::pair<std::string, double>, AccuracyRow> ownRows;
@@ -173,7 +179,9 @@ int runPhysical(const PhysicalArgs& a) {
       for (const auto& [field, values] : probe->traits().resolutionSweeps)
         for (const std::string& v : values) {
           std::string label;
-          auto r = measurePhysical(sweepSpec(type, field, v, label), a.sweepVoxelMm * 1e-3, cfg);
+          PhysicalConfig sweepCfg = cfg;
+          sweepCfg.poses = nullptr;  // per-pose rows are the defaults'
+          auto r = measurePhysical(sweepSpec(type, field, v, label), a.sweepVoxelMm * 1e-3, sweepCfg);
           for (PhysicalRow& row : r) row.resolution = label;
           std::cerr << type << " " << label << " h=" << a.sweepVoxelMm << "mm: force " << pct(r.back().forceRms)
                     << " %, direction " << fmt(r.back().directionRms) << " deg, p50 " << fmt(r.back().p50Us) << " us\n";
@@ -416,6 +424,7 @@ void addBenchCommand(CLI::App& app, int& result) {
   phys->add_flag("--quick", ph->quick, "One sub-voxel phase, and the quick own-law run");
   phys->add_flag("!--no-own-law", ph->ownLaw, "Skip the own-law column (bench accuracy's figure)");
   phys->add_option("--csv", ph->csv, "Write every row (per scene and 'all') as CSV");
+  phys->add_option("--poses", ph->poses, "Write one CSV row per pose (forces, torques, errors) at the default resolution");
   phys->add_option("--md", ph->md, "Write the Markdown tables here (default: stdout)");
   onRun(phys, ph, runPhysical, result);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <ostream>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -129,6 +130,23 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
       s.drawn.push_back(glm::length(out.drawnTool.position - ref.pose.position) / h);
       s.drawnDeg.push_back(glm::length(rotationVector(out.drawnTool.orientation * glm::inverse(ref.pose.orientation))) /
                            kDeg);
+      if (cfg.poses) {
+        const glm::dvec3 axis = probe.device.orientation * glm::dvec3(0, 1, 0);
+        auto v = [](const glm::dvec3& x) {
+          std::ostringstream o;
+          o.precision(5);
+          o << x.x << "," << x.y << "," << x.z;
+          return o.str();
+        };
+        std::ostringstream row;
+        row.precision(5);
+        row << spec.type << "," << h * 1e3 << "," << name << "," << s.poses - 1 << "," << probe.depth * 1e3 << ","
+            << v(probe.device.position * 1e3) << "," << v(axis) << "," << v(out.force) << "," << v(ref.force) << ","
+            << v(out.torque) << "," << v(ref.torque) << "," << ref.contacts.size() << "," << out.contacts << ","
+            << s.force.back() << "," << (fr >= floor && fo > 0.0 ? s.direction.back() : kNaN) << ","
+            << s.torque.back() << "," << s.drawn.back() << "\n";
+        *cfg.poses << row.str();
+      }
     }
     rows.push_back(summarise(spec.type, h, name, k, kr, s));
     all.append(s);
@@ -140,6 +158,11 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
 std::string physicalCsvHeader() {
   return "renderer,resolution,h_mm,scene,poses,felt_k,felt_kr,force_rms,force_p95,dir_rms_deg,dir_p95_deg,missed,torque_rms,"
          "arm_rms_mm,arm_rel_rms,line_rms_mm,drawn_rms_vox,drawn_rms_deg,p50_us,p99_us,ref_violation_m,ref_converged";
+}
+
+std::string physicalPoseCsvHeader() {
+  return "renderer,h_mm,scene,pose,depth_mm,device_x_mm,device_y_mm,device_z_mm,axis_x,axis_y,axis_z,fx,fy,fz,ref_fx,"
+         "ref_fy,ref_fz,tx,ty,tz,ref_tx,ref_ty,ref_tz,ref_contacts,contacts,force_err,dir_err_deg,torque_err,drawn_vox";
 }
 
 std::string toCsv(const PhysicalRow& r) {

@@ -3,6 +3,7 @@
 // renderer pressed into the physical scenes at voxel size h and compared with
 // the constrained pose of the rigid tool (measure/PhysicalReference.h), the
 // reference's stiffness being the one the renderer is felt to have.
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct PhysicalConfig {
   int phases = 2;
   int approachFrames = 40;  // steps from the approach start to the held pose
   int settleFrames = 60;    // steps held there; the last output is compared
+  // Not null: one CSV row per pose (physicalPoseCsvHeader()), to see which
+  // poses make a scene's error.
+  std::ostream* poses = nullptr;
 };
 
 struct PhysicalRow {
@@ -46,6 +50,8 @@ struct PhysicalRow {
 std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, const PhysicalConfig& config = {});
 
 std::string physicalCsvHeader();
+// The per-pose rows' columns (PhysicalConfig::poses): forces in N, torques in N·m, lengths in mm.
+std::string physicalPoseCsvHeader();
 std::string toCsv(const PhysicalRow& r);
 
 }  // namespace millsim::measure
