@@ -272,7 +272,7 @@ private:
           t = tracked(track_[j]), firstTracked = j;  // in contact: from the last frame's first line
           break;
         }
-      if (t.u == glm::dvec3(0.0)) {
+      if (t.u == glm::dvec3(0.0) && scene.mayHaveMaterialNear(c, r_ + sphereGrow_)) {
         glm::dvec3 sum(0.0);
         for (const glm::dvec3& offset : sphere_) {
           const glm::dvec3 v = c + (1.0 + sphereGrow_ / r_) * (R * offset);
@@ -381,7 +381,14 @@ private:
       return c + R * (glm::dvec3(0.0, sliceY_[i / ring_.size()], 0.0) + (1.0 + grow / rho_) * v);
     };
     char* inside = inside_.data() + (onShaft ? sphere_.size() : 0);
-    for (std::size_t i = 0; i < count; ++i) inside[i] = scene.inside(point(i));
+    // Most of the shaft, and a burr in the air, are far from everything: one
+    // lookup per slice (or for the whole sphere) skips its points.
+    const std::size_t group = onShaft ? ring_.size() : count;
+    for (std::size_t g = 0; g < count; g += group) {
+      const glm::dvec3 centre = onShaft ? c + R * glm::dvec3(0.0, sliceY_[g / group], 0.0) : c;
+      const bool near = scene.mayHaveMaterialNear(centre, onShaft ? rho_ + grow : r_ + grow);
+      for (std::size_t i = g; i < g + group; ++i) inside[i] = near && scene.inside(point(i));
+    }
     for (int attempt = 0; attempt < 3 && n < kMaxPointContacts; ++attempt) {
       glm::dvec3 sum(0.0);
       int left = 0;
