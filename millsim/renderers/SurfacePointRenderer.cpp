@@ -11,6 +11,7 @@
 
 #include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/renderers/ContactShares.h"
 #include "millsim/renderers/DeepestPoint.h"
 
 namespace millsim {
@@ -309,31 +310,37 @@ private:
       t.phi = std::atan2(v.z, v.x), t.t = rho_;
       return shaft(t);
     });
-    // Each contact pushes k times its own depth. Not the smallest translation
-    // out of all of them (a rigid tool's): where the burr is on one wall and
-    // the leaning shaft on the opposite rim no translation clears both, the
-    // shares grow many times the depths and every ripple of the contacts'
-    // normals came through as a jolt (1.4 N frame to frame in the §8.2
-    // lean). Faces at right angles (a corner, a hole's wall and floor) get
-    // the same push either way.
+    // The contacts push together as a rigid tool is pushed out of them, no
+    // contact harder than k times its own depth (ContactShares.h): contacts
+    // less than 90° apart share one push, contacts at right angles or beyond
+    // push k times their depths each. Not the rigid tool's whole answer in a
+    // wedge: where the burr is on one wall and the leaning shaft on the
+    // opposite rim, its shares grow many times the depths and every ripple of
+    // the contacts' normals came through as a jolt (1.4 N frame to frame in
+    // the §8.2 lean).
+    glm::dvec3 normals[kMaxPointContacts];
+    double depths[kMaxPointContacts], shares[kMaxPointContacts];
     out.contacts = 0;
     const PointContact* burr = nullptr;  // the burr's first contact, touching or near
     for (int j = 0; j < n; ++j) {
       const bool first = !found[j].shaft && !burr;
       if (first) burr = &contacts[j];
+      normals[j] = contacts[j].normal, depths[j] = contacts[j].depth;
       if (!(contacts[j].depth > 0.0)) continue;  // near, not touching
-      double share = contacts[j].depth;
+      ++out.contacts;
       if (!found[j].shaft && !first) {
         // A second face of the burr's is a face only more than 60° from the
         // first (closer, it is the same face), so it enters weighted from 0
         // at 60° to whole at 90°: not at once as it turns past 60°.
-        share *= std::clamp((std::acos(std::clamp(glm::dot(burr->normal, contacts[j].normal), -1.0, 1.0)) -
-                             std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
+        depths[j] *= std::clamp((std::acos(std::clamp(glm::dot(burr->normal, contacts[j].normal), -1.0, 1.0)) -
+                                 std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
       }
-      const glm::dvec3 f = k_ * share * contacts[j].normal;
+    }
+    contactShares(normals, depths, n, shares);
+    for (int j = 0; j < n; ++j) {
+      const glm::dvec3 f = k_ * shares[j] * contacts[j].normal;
       out.force += f;
       out.torque += glm::cross(contacts[j].point - c, f);
-      ++out.contacts;
     }
     tracked_ = n;
     std::copy(found, found + n, track_);

@@ -5,8 +5,9 @@
 // 14–16), colliding slice vertices give per-slice reactions and the torque
 // (eq. 18–21); a sphere or slice whose centre is inside holds its previous
 // value (eq. 17, 19). The tool is drawn where the device is. By default
-// (deepestPoints) the points only find the contacts: each contact's force is
-// k times the tool's deepest point's depth there (docs/algorithms.md).
+// (deepestPoints) the points only find the contacts: each contact pushes k
+// times the tool's deepest point's depth there, contacts less than 90° apart
+// sharing one push as a rigid tool's (ContactShares.h, docs/algorithms.md).
 #include "millsim/haptics/HapticsRenderer.h"
 
 namespace millsim {
@@ -33,7 +34,8 @@ public:
 
   SFBool deepestPoints{this, "deepestPoints", Access::InitializeOnly, true,
                        "Push the tool out by k times its depth: each contact (the burr's or shaft's deepest line "
-                       "in material, tracked from frame to frame) pushes k times its depth along its normal; false: "
+                       "in material, tracked from frame to frame) pushes k times its depth along its normal, contacts less than 90° "
+                       "apart sharing one push as a rigid tool's; false: "
                        "the paper's sum of colliding points (eq. 14-21: force as depth squared, shaft torque only)."};
 
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
