@@ -104,8 +104,8 @@ TEST_P(EveryRendererInTheLessons, InTheDefaultLessonsLeanTheWallPushesTheShaftBa
 // The §8.2 procedure on the default lesson felt without shaking, by every
 // renderer: the mean and the largest change of force from one frame to the
 // next while milling the hole, milling with the shaft on the rim, leaning, and
-// holding still. Measured (simulated time): #1 1.5 / 0.1 / 0.6 / 0.04 mN mean,
-// 0.10 / 0.016 / 0.15 / 0.016 N largest; #2 under 0.5 mN and 0.05 N; #3 under
+// holding still. Measured (simulated time): #1 1.4 / 0.09 / 0.5 / 0.06 mN mean,
+// 0.086 / 0.012 / 0.125 / 0.016 N largest; #2 under 0.5 mN and 0.05 N; #3 under
 // 0.5 mN, 0.18 N largest (a milling frame), 0.01 N elsewhere. #1's burr proxy,
 // hopping between the walls of its own hole when the shaft pushed the hand off
 // its axis, gave 28 and 36 mN mean, 0.35 and 0.32 N largest, leaning and holding.
