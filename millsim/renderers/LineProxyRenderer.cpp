@@ -424,13 +424,27 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
 // (2-core AMD EPYC VM shared with a build, release): vertexCount 51 -> 1000
 // took 5.23 -> 57.7 us a frame, 55 ns per added vertex sample.
 // docs/algorithms.md, "Frame cost model".
+// The worst frame: the burr's proxy at its most (a surface entry, then every
+// tangent-plane step refused and tried twice halved: 2 + 8 + 12 per step
+// field evaluations, each some 45 samples with feelBurrSurface's BurrField)
+// plus the shaft: the paper's first-contact search (eq. 3–4), or the surface
+// shaft's ring seeds (8 a vertex) and its deepest line (about 200). Measured
+// at the defaults (bench procedure, §8.2): milling frames p99 97 µs, worst
+// 204 µs, against an estimate of 236 µs.
 FrameCostEstimate LineProxyRenderer::estimateFrameCost(const FrameCostContext&) const {
   constexpr double kNsPerSample = 55.0;
-  const long samples = long(vertexCount.get()) * (1L + translationSteps.get() + rotationSteps.get());
-  return {double(samples) * kNsPerSample * 1e-9,
-          std::to_string(samples) + " samples in a first shaft contact (vertexCount x (1 + translationSteps + "
-                                    "rotationSteps)) x " + formatNumber(kNsPerSample) + " ns",
-          "lower vertexCount, translationSteps or rotationSteps"};
+  const long perEvaluation = feelBurrSurface.get() ? 45 : 1;
+  const long burr = perEvaluation * (10L + 12L * proxyIterations.get());
+  const long shaft = feelShaftSurface.get() ? long(vertexCount.get()) * 8L + 200L
+                                            : long(vertexCount.get()) * (1L + translationSteps.get() + rotationSteps.get());
+  const std::string shaftModel = feelShaftSurface.get() ? "vertexCount x 8 ring seeds + 200 for the shaft's deepest line"
+                                                        : "vertexCount x (1 + translationSteps + rotationSteps) for a "
+                                                          "first shaft contact";
+  return {double(burr + shaft) * kNsPerSample * 1e-9,
+          std::to_string(burr + shaft) + " samples (" + std::to_string(burr) + " for the burr's proxy: " +
+              std::to_string(perEvaluation) + " per evaluation x (10 + 12 x proxyIterations); " + shaftModel + ") x " +
+              formatNumber(kNsPerSample) + " ns",
+          feelShaftSurface.get() ? "lower proxyIterations or vertexCount" : "lower vertexCount, translationSteps or rotationSteps"};
 }
 
 RendererTraits LineProxyRenderer::traits() const {
