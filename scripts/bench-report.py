@@ -145,7 +145,7 @@ def phys(rend):
             return r
     return None
 w("| algorithm | §8.2 frames p99 / worst (µs) | §8.2 milling frames p99 / worst (µs) | §8.1 gentle pose p99 (µs) | force error RMS, physical reference / own law (h = 0.1 mm) | direction error RMS, physical (°) | "
-  "torque error RMS | largest stable stiffness, measured arm (× default) | highest safe speed through plates "
+  "torque error RMS, physical / own law | largest stable stiffness, measured arm (× default) | highest safe speed through plates "
   "(1/2/4 voxels, 1 mm) | passivity (CI grips) | §8.2 score (lower is better) |")
 w("|---|---|---|---|---|---|---|---|---|---|---|")
 paper_res = {"LineProxyRenderer": "vertexCount=51", "SurfacePointRenderer": "slices=20", "BarbicRenderer": "pointShellScale=3"}
@@ -166,7 +166,7 @@ for rend in renderers:
       f"{fmt(num(fm['p99_us'])) + ' / ' + fmt(num(fm['max_us'])) if fm else '–'} | "
       f"{fmt(num(rr['p99_us'])) + ' (' + paper_res.get(rend) + ')' if rr else '–'} | "
       f"{(fmt(num(phys(rend)['force_rms'])) + ' / ') if phys(rend) else ''}{fmt(num(d[0]['force_rms'])) if d else '–'} | "
-      f"{fmt(num(phys(rend)['dir_rms_deg'])) if phys(rend) else '–'} | {fmt(num(d[0]['torque_rms'])) if d and edge else '– (not modelled)'} | {zs} | {speeds} | "
+      f"{fmt(num(phys(rend)['dir_rms_deg'])) if phys(rend) else '–'} | {(fmt(num(phys(rend)['torque_rms'])) + ' / ') if phys(rend) else ''}{fmt(num(d[0]['torque_rms'])) if d and edge else '– (own law not modelled)'} | {zs} | {speeds} | "
       f"{'all pass' if not fails else str(len(fails)) + ' of ' + str(len([p for p in scen if p[0] == rend])) + ' runs fail (known issues below)'} | "
       f"{total_score(rend) or '–'} |")
 w("")
@@ -303,10 +303,23 @@ def best(metric, among=None):
 # Torque is compared only where it is measured against a shaft contact (the edge scene).
 edge_torque = {r["renderer"] for r in acc if r["scene"] == "edge" and r["resolution"] == "default"
                and abs(num(r["h_mm"]) - 0.1) < 1e-9 and math.isfinite(num(r["torque_rms"]))}
-w(f"- **Accuracy** (h = 0.1 mm, defaults): lowest force error **{best('force_rms')}**; lowest shaft-torque error "
-  f"**{best('torque_rms', edge_torque)}** (among {', '.join(sorted(edge_torque)) or 'none'}: the shaft-torque reference of a "
-  "coupled tool is not modelled, so #3's torque is not scored). Each error is against the algorithm's *own* law fed "
-  "with exact geometry (how faithfully it renders its model), not one physical truth.")
+phys_all = [r for r in physical_rows if r["scene"] == "all" and r.get("resolution", "default") == "default"
+            and abs(num(r["h_mm"]) - 0.1) < 1e-9]
+def best_phys(metric, unit=""):
+    c = [r for r in phys_all if math.isfinite(num(r[metric]))]
+    if not c:
+        return "–"
+    r = min(c, key=lambda r: num(r[metric]))
+    value = num(r[metric]) * (100 if unit == " %" else 1)
+    return f"**{r['renderer']}** ({fmt(value)}{unit})"
+if phys_all:
+    w(f"- **Accuracy against the rigid tool** (h = 0.1 mm, defaults, [accuracy.md](accuracy.md#physical-reference)): "
+      f"lowest force error {best_phys('force_rms', ' %')}, force direction {best_phys('dir_rms_deg', '°')}, "
+      f"torque {best_phys('torque_rms')}.")
+w(f"- **Fidelity to its own law** (h = 0.1 mm, defaults): lowest force error **{best('force_rms')}**; lowest shaft-torque error "
+  f"**{best('torque_rms', edge_torque)}** (among {', '.join(sorted(edge_torque)) or 'none'}: the own-law shaft torque of a "
+  "coupled tool is not modelled). Each is against the algorithm's *own* law fed with exact geometry (how faithfully it "
+  "renders its model), not one physical truth.")
 held = [rend for rend in renderers if safe.get(rend) and all(x[2] for x in safe[rend])]
 if held:
     w(f"- **Thin walls, fast strokes**: {', '.join('**' + h + '**' for h in held)} held every plate (1, 2, 4 voxels, "
