@@ -416,20 +416,15 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
 
 // A proxy on a spring: the stiffness is its spring, the resolution its
 // centreline vertices, and the proxy never enters material.
-// Cost model (`millsim check`): the worst frame is a first shaft contact,
-// whose search (eq. 3-4) samples the centreline at up to translationSteps +
-// rotationSteps poses besides the frame's own: vertexCount x (1 +
-// translationSteps + rotationSteps) samples x kNsPerSample. Measured with
-// `millsim bench rates --renderer LineProxyRenderer` on the tooth phantom
-// (2-core AMD EPYC VM shared with a build, release): vertexCount 51 -> 1000
-// took 5.23 -> 57.7 us a frame, 55 ns per added vertex sample.
-// docs/algorithms.md, "Frame cost model".
-// The worst frame: the burr's proxy at its most (a surface entry, then every
-// tangent-plane step refused and tried twice halved: 2 + 8 + 12 per step
+// Cost model (`millsim check`, docs/algorithms.md "Frame cost model"): the
+// worst frame is the burr's proxy at its most (a surface entry, then every
+// tangent-plane step refused and tried twice halved: about 10 + 12 per step
 // field evaluations, each some 45 samples with feelBurrSurface's BurrField)
-// plus the shaft: the paper's first-contact search (eq. 3–4), or the surface
-// shaft's ring seeds (8 a vertex) and its deepest line (about 200). Measured
-// at the defaults (bench procedure, §8.2): milling frames p99 97 µs, worst
+// plus the shaft: the surface shaft's ring seeds (8 a vertex) and deepest
+// line (about 200), or the paper's first-contact search (eq. 3–4, vertexCount
+// x (1 + translationSteps + rotationSteps)); 55 ns a sample (`bench rates`,
+// the paper's shaft: vertexCount 51 -> 1000 took 5.23 -> 57.7 us a frame).
+// At the defaults (bench procedure, §8.2): milling frames p99 97 µs, worst
 // 204 µs, against an estimate of 236 µs.
 FrameCostEstimate LineProxyRenderer::estimateFrameCost(const FrameCostContext&) const {
   constexpr double kNsPerSample = 55.0;
