@@ -104,8 +104,13 @@ protected:
     double allowed;
     const char* why;
   };
-  // None at present: #2's and #3's went with issue 14 (deepestPoints, pointShellScale 1).
-  static constexpr std::array<KnownMiss, 0> kKnownMisses{};
+  // #2's and #3's earlier misses went with issue 14 (deepestPoints, pointShellScale 1).
+  static constexpr std::array<KnownMiss, 1> kKnownMisses{{
+      {"BarbicRenderer", "ball direction", 5.0,
+       "the scale-1 point shell on the voxelised ball: 3.1 and 4.6 degrees at 2 of the 12 poses (0.15 mm in along "
+       "(0.3, 1, 0.2), 0.05 mm in along (1, 0.2, 0.05)); RMS under 3 (Barbic.AtItsDefaultsAFlatFacePushesStraightOut"
+       "AndABallAlongItsNormal)"},
+  }};
   // The bound `ratio` must meet for this renderer; prints what a known miss excuses.
   double bound(const char* check, double strict, double ratio) const {
     for (const KnownMiss& m : kKnownMisses)
@@ -216,6 +221,54 @@ TEST_P(EveryRenderer, AShaftLeaningOnAnEdgeIsPushedBackWithTheReferenceMomentArm
   // |T − T_ref| relative to |F_ref|·arm_ref: a torque of the wrong sign is about 2.
   EXPECT_LT(row->torqueRms, 0.5);
   EXPECT_LT(row->armRelRms, 0.15) << "moment arm RMS relative to the reference's";
+}
+
+// Issue 14's must-holds for the burr, over the registry (the per-renderer
+// tests in LineProxy, SurfacePoint and Barbic say more about each): pressed
+// straight down on a flat face, the lateral force is at most 5 % of the
+// normal force at every depth of the burr's surface (0.05–0.6 mm), sub-voxel
+// phase and shaft tilt; a burr whose surface is 0.25 mm inside is pushed out.
+TEST_P(EveryRenderer, PressingStraightDownOnAFlatFaceGivesAtMostFivePercentSidewaysForce) {
+  for (double tilt : {0.0, 0.5})
+    for (double x : {0.0, 0.037e-3})
+      for (double depth : {0.05e-3, 0.1e-3, 0.2e-3, 0.25e-3, 0.3e-3, 0.6e-3}) {
+        Rig rig(slab(), *renderer());
+        const glm::dvec3 at(x, kTool.tipRadius - depth, 0.013e-3);
+        rig.approach(tilted(at + glm::dvec3(0, 1.5e-3, 0), tilt), tilted(at, tilt));
+        bool settled = false;
+        const auto out = rig.settle(tilted(at, tilt), settled);
+        const std::string where = "tilt " + std::to_string(tilt) + " x " + std::to_string(x) + " depth " +
+                                  std::to_string(depth);
+        ASSERT_TRUE(settled) << where;
+        ASSERT_GT(out.force.y, 0.0) << where << ": not pushed out";
+        EXPECT_LE(std::hypot(out.force.x, out.force.z), 0.05 * out.force.y) << where;
+      }
+}
+
+// Issue 14's must-hold on a convex surface, over the registry: pressed along
+// the normal of a 2 mm ball, 0.05–0.25 mm in, the force at rest is within 3°
+// of the normal.
+TEST_P(EveryRenderer, OnABallTheForceIsWithinThreeDegreesOfTheNormal) {
+  const double R = 2.0e-3;
+  double worst = 0.0;
+  std::string worstPose;
+  for (const glm::dvec3 d : {glm::dvec3(0.3, 1.0, 0.2), glm::dvec3(0.4, 1.0, -0.3), glm::dvec3(-0.7, 0.6, 0.1),
+                             glm::dvec3(1.0, 0.2, 0.05)})
+    for (double depth : {0.05e-3, 0.15e-3, 0.25e-3}) {
+      Rig rig(analytic(64, [&](const glm::dvec3& p) { return glm::length(p) - R; }), *renderer());
+      const glm::dvec3 n = glm::normalize(d);
+      const Pose pressed = vertical(n * (R + kTool.tipRadius - depth));
+      rig.approach(vertical(n * (R + kTool.tipRadius + 1.0e-3)), pressed);
+      bool settled = false;
+      const auto out = rig.settle(pressed, settled);
+      ASSERT_TRUE(settled);
+      ASSERT_GT(glm::length(out.force), 0.0) << "depth " << depth;
+      const double degrees = std::acos(std::clamp(glm::dot(glm::normalize(out.force), n), -1.0, 1.0)) * 180.0 / M_PI;
+      if (degrees > worst)
+        worst = degrees, worstPose = "along (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " +
+                                     std::to_string(d.z) + "), " + std::to_string(depth * 1e3) + " mm in";
+    }
+  EXPECT_LE(worst, bound("ball direction", 3.0, worst)) << "worst " << worstPose;
 }
 
 // Issue 14's concave surface, against the rigid tool: the burr pressed into
