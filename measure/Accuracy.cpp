@@ -125,19 +125,12 @@ Reference reference(ReferenceKind kind, const Sdf& f, const ProbePose& pp, const
       }
       if (least < tool.shaftRadius) {
         const glm::dvec3 axis = proxy + dir * tLeast, normal = glm::normalize(gradient(f, axis));
-        // The burr's push and the shaft's share one push (ContactShares.h),
-        // both at the device's pose, as the renderer does.
-        double share = tool.shaftRadius - least;
+        // The burr's push and the shaft's share one push, as the renderer's do.
         const glm::dvec3 burrPush = proxy - c;
-        if (glm::length(burrPush) > 0.0) {
-          const glm::dvec3 normals[2] = {glm::normalize(burrPush), normal};
-          const double depths[2] = {glm::length(burrPush), share + glm::dot(burrPush, normal)};
-          double shares[2];
-          contactShares(normals, depths, 2, shares);
-          ref.force = k * shares[0] * normals[0];
-          share = shares[1];
-        }
-        const glm::dvec3 push = k * share * normal;
+        const BurrShaftShares shares = burrAndShaftShares(burrPush, normal, tool.shaftRadius - least);
+        if (glm::length(burrPush) > 0.0)
+          ref.force = k * shares.burr * (burrPush / glm::length(burrPush));
+        const glm::dvec3 push = k * shares.shaft * normal;
         const glm::dvec3 r = axis - least * normal - proxy;  // the surface point nearest the axis
         ref.force += push;
         ref.torque = glm::cross(r, push);

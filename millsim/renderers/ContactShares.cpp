@@ -42,4 +42,14 @@ void contactShares(const glm::dvec3* normals, const double* depths, int n, doubl
   }
 }
 
+BurrShaftShares burrAndShaftShares(const glm::dvec3& burrPush, const glm::dvec3& shaftNormal, double shaftDepth) {
+  const double burrDepth = glm::length(burrPush);
+  if (!(burrDepth > 0.0)) return {0.0, shaftDepth};
+  const glm::dvec3 normals[2] = {burrPush / burrDepth, shaftNormal};
+  const double depths[2] = {burrDepth, shaftDepth + glm::dot(burrPush, shaftNormal)};
+  double shares[2];
+  contactShares(normals, depths, 2, shares);
+  return {shares[0], shares[1]};
+}
+
 }  // namespace millsim

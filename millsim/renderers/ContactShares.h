@@ -27,4 +27,15 @@ namespace millsim {
 // Projected Gauss–Seidel to a relative 1e-9, at most 200 sweeps; no allocation.
 void contactShares(const glm::dvec3* normals, const double* depths, int n, double* shares);
 
+// #1's two contacts: the burr's push (its proxy − the device) and a shaft
+// contact found with the tool at the burr's proxy (unit normal, depth there).
+// Both are measured at the device's pose — moving the tool back by the
+// burr's push deepens the shaft by that push along its normal — and share as
+// above. The burr pushes `burr` along its push's direction, the shaft `shaft`
+// along its normal (m each).
+struct BurrShaftShares {
+  double burr = 0.0, shaft = 0.0;
+};
+BurrShaftShares burrAndShaftShares(const glm::dvec3& burrPush, const glm::dvec3& shaftNormal, double shaftDepth);
+
 }  // namespace millsim

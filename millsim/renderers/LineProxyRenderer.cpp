@@ -276,21 +276,13 @@ private:
     const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
     const glm::dvec3 point = tip + line.y * axis + line.t * w;  // on the material's surface
     // The burr's push (tip proxy − device) and the shaft's share one push as
-    // a rigid tool's (ContactShares.h), both measured at the device's pose
-    // (the shaft was found at the tip proxy's: moving the tool back by the
-    // burr's push deepens it by that push along its normal). Summed, a shaft
-    // on a bowl's rim and the burr in its wall pushed twice where one push
-    // clears both; at right angles or beyond each pushes its own depth.
+    // a rigid tool's (ContactShares.h). Summed, a shaft on a bowl's rim and
+    // the burr in its wall pushed twice where one push clears both; at right
+    // angles or beyond each pushes its own depth.
     const glm::dvec3 burrPush = tip - device.position;
-    const double burrDepth = glm::length(burrPush);
-    double shares[2] = {0.0, depth};
-    if (burrDepth > 0.0) {
-      const glm::dvec3 normals[2] = {burrPush / burrDepth, -w};
-      const double depths[2] = {burrDepth, depth + glm::dot(burrPush, -w)};
-      contactShares(normals, depths, 2, shares);
-      out.force = p_.k * shares[0] * normals[0];
-    }
-    const glm::dvec3 push = p_.k * shares[1] * -w;
+    const BurrShaftShares shares = burrAndShaftShares(burrPush, -w, depth);
+    out.force = shares.burr > 0.0 ? p_.k * shares.burr * (burrPush / glm::length(burrPush)) : glm::dvec3(0.0);
+    const glm::dvec3 push = p_.k * shares.shaft * -w;
     out.force += push;
     out.torque += glm::cross(point - tip, push);
     out.hasIntersection = true;

@@ -103,8 +103,7 @@ public:
     // into the other (two-plane god object), instead of bouncing between them.
     bool slideAlongCreases = false;
     // Take a slide only if it brings the proxy nearer the probe (halved up
-    // to twice, else stay):
-    // a god object minimises that distance, and where
+    // to twice, else stay): a god object minimises that distance, and where
     // the free space is a needle — the burr in the hole it drilled, pushed
     // against a wall — slides projected onto alternate walls otherwise hopped
     // 0.1–0.2 mm a frame with the probe still (the burr's proxy).

@@ -34,9 +34,9 @@ public:
 
   SFBool deepestPoints{this, "deepestPoints", Access::InitializeOnly, true,
                        "Push the tool out by k times its depth: each contact (the burr's or shaft's deepest line "
-                       "in material, tracked from frame to frame) pushes k times its depth along its normal, contacts less than 90° "
-                       "apart sharing one push as a rigid tool's; false: "
-                       "the paper's sum of colliding points (eq. 14-21: force as depth squared, shaft torque only)."};
+                       "in material, tracked from frame to frame) pushes k times its depth along its normal, "
+                       "contacts less than 90° apart sharing one push as a rigid tool's; false: the paper's sum of "
+                       "colliding points (eq. 14-21: force as depth squared, shaft torque only)."};
 
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr cuts where the device is, and the material gives way at force / "
