@@ -19,7 +19,6 @@ namespace {
 
 using Sdf = std::function<double(const glm::dvec3&)>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kMinForce = 0.5;  // N: the notes' threshold, used as the floor of the normaliser
 
 glm::dvec3 gradient(const Sdf& f, const glm::dvec3& p) {
@@ -197,13 +196,13 @@ std::vector<ProbePose> poses(const std::string& scene, double h, const AccuracyC
     const double d = (0.5 + 0.5 * di) * h;
     for (double tiltDeg : cfg.tiltsDeg)
       for (int ph = 0; ph < cfg.phases; ++ph) {
-        const double shift = h * ph / cfg.phases, tilt = tiltDeg * kDeg;
+        const double shift = h * ph / cfg.phases, tilt = tiltDeg * kRadiansPerDegree;
         ProbePose pp;
         glm::dvec3 n, contact;  // outward normal of the material and the contact point
         if (scene == "edge") {
           if (d > maxShaft) continue;
           // The shaft leans over the edge (the Z axis), the burr stays clear.
-          const double th = std::max(tilt, 15.0 * kDeg), s = 2.5e-3, rho = shaftOffset - d;
+          const double th = std::max(tilt, 15.0 * kRadiansPerDegree), s = 2.5e-3, rho = shaftOffset - d;
           const glm::dvec3 dir(-std::sin(th), std::cos(th), 0.0), perp(std::cos(th), std::sin(th), 0.0);
           const glm::dvec3 c = perp * rho - dir * s + glm::dvec3(0, 0, shift);
           pp.device = Pose{c, rotationBetween({0, 1, 0}, dir)};
@@ -304,7 +303,7 @@ std::vector<AccuracyRow> measureAccuracy(const RendererSpec& spec, double h, con
       if (fr > 0.0 || glm::length(out.force) > 0.0) s.force.push_back(glm::length(out.force - ref.force) / std::max(fr, kMinForce));
       if (fr >= 0.05) {
         const double fo = glm::length(out.force);
-        s.direction.push_back(fo > 0.0 ? std::acos(std::clamp(glm::dot(out.force, ref.force) / (fo * fr), -1.0, 1.0)) / kDeg
+        s.direction.push_back(fo > 0.0 ? std::acos(std::clamp(glm::dot(out.force, ref.force) / (fo * fr), -1.0, 1.0)) / kRadiansPerDegree
                                         : 180.0);
       }
       if (ref.torqueKnown && (ref.reaction > 0.0 || glm::length(out.torque) > 0.0))

@@ -5,6 +5,7 @@
 // the shape's surface up to the sampling error the renderers must live with.
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include <glm/mat4x4.hpp>
@@ -16,6 +17,7 @@
 namespace millsim::measure {
 
 inline constexpr float kIso = 500.f;  // the iso value every analytic volume uses
+inline constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 
 struct Shape {
   std::string name;

@@ -12,17 +12,17 @@
 namespace millsim::measure {
 
 namespace {
-constexpr double kH = 0.1e-3;
+constexpr double kFallThroughVoxel = 0.1e-3;
 
 AnalyticScene& plateScene(double t) {
   static std::map<double, std::unique_ptr<AnalyticScene>> cache;
   auto& s = cache[t];
-  if (!s) s = voxelise(plate(t, {-4e-3, -4e-3, -4e-3}, {4e-3, 4e-3, 4e-3}), kH);
+  if (!s) s = voxelise(plate(t, {-4e-3, -4e-3, -4e-3}, {4e-3, 4e-3, 4e-3}), kFallThroughVoxel);
   return *s;
 }
 }  // namespace
 
-double fallThroughVoxelSize() { return kH; }
+double fallThroughVoxelSize() { return kFallThroughVoxel; }
 std::vector<double> plateThicknesses(double h) { return {h, 2 * h, 4 * h, 1e-3}; }
 std::vector<double> fallThroughSpeeds() { return {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.75, 1.0, 1.5, 2.0}; }
 

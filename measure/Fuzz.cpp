@@ -14,7 +14,7 @@ namespace millsim::measure {
 
 namespace {
 
-constexpr double kH = 0.1e-3;
+constexpr double kFuzzVoxel = 0.1e-3;
 
 // A slab (y < 0), a ball of radius 1.5 mm above it and a one-voxel plate at
 // y = 3.5 mm, as one union: flat, curved and thin features in one field.
@@ -22,7 +22,7 @@ Shape fuzzShape() {
   return {"fuzz",
           [](const glm::dvec3& p) {
             const double slab = p.y, ball = glm::length(p - glm::dvec3(1.5e-3, 1.5e-3, 0.0)) - 1.5e-3,
-                         sheet = std::abs(p.y - 3.5e-3) - 0.5 * kH;
+                         sheet = std::abs(p.y - 3.5e-3) - 0.5 * kFuzzVoxel;
             return std::min({slab, ball, sheet});
           },
           {-4e-3, -3e-3, -4e-3}, {4e-3, 5e-3, 4e-3}};
@@ -39,7 +39,7 @@ public:
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
     if (r < 0.45) {
       what = "random walk";
-      pose_.position += glm::dvec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)) * (2.0 * kH);
+      pose_.position += glm::dvec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)) * (2.0 * kFuzzVoxel);
       pose_.orientation = glm::normalize(glm::angleAxis(uniform(-0.05, 0.05), randomAxis()) * pose_.orientation);
       pose_.position = glm::clamp(pose_.position, glm::dvec3(-3.5e-3, -2.5e-3, -3.5e-3), glm::dvec3(3.5e-3, 4.5e-3, 3.5e-3));
     } else if (r < 0.55) {
@@ -129,7 +129,7 @@ void note(FuzzResult& r, long frame, const char* what) {
 }  // namespace
 
 FuzzResult fuzzThroughLoop(const RendererSpec& spec, long frames, std::uint64_t seed, double drop) {
-  auto scene = voxelise(fuzzShape(), kH);  // fresh: the run mills it
+  auto scene = voxelise(fuzzShape(), kFuzzVoxel);  // fresh: the run mills it
   auto node = makeRenderer(spec);
   PoseSource source(seed);
   const char* what = "";
@@ -153,7 +153,7 @@ FuzzResult fuzzThroughLoop(const RendererSpec& spec, long frames, std::uint64_t 
 }
 
 FuzzResult fuzzDirect(const RendererSpec& spec, long frames, std::uint64_t seed) {
-  auto scene = voxelise(fuzzShape(), kH);
+  auto scene = voxelise(fuzzShape(), kFuzzVoxel);
   auto node = makeRenderer(spec);
   auto algorithm = node->compile(standardTool(), *scene->scene);
   PoseSource source(seed);

@@ -18,7 +18,6 @@ namespace millsim::measure {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kFloorDepth = 0.05e-3;  // m: forces are normalised by at least k_felt times this
 // m past first contact: the felt stiffness is the slope between these depths on a flat face, the same at every h.
@@ -112,7 +111,7 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
       s.force.push_back(std::abs(fo - fr) / std::max(fr, floor));
       if (fr >= floor) {
         ++s.pressed;
-        if (fo > 0.0) s.direction.push_back(std::acos(std::clamp(glm::dot(out.force, ref.force) / (fo * fr), -1.0, 1.0)) / kDeg);
+        if (fo > 0.0) s.direction.push_back(std::acos(std::clamp(glm::dot(out.force, ref.force) / (fo * fr), -1.0, 1.0)) / kRadiansPerDegree);
         else ++s.missed;
       }
       s.torque.push_back(glm::length(out.torque - ref.torque) /
@@ -129,7 +128,7 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
       }
       s.drawn.push_back(glm::length(out.drawnTool.position - ref.pose.position) / h);
       s.drawnDeg.push_back(glm::length(rotationVector(out.drawnTool.orientation * glm::inverse(ref.pose.orientation))) /
-                           kDeg);
+                           kRadiansPerDegree);
       if (cfg.poses) {
         const glm::dvec3 axis = probe.device.orientation * glm::dvec3(0, 1, 0);
         auto v = [](const glm::dvec3& x) {

@@ -11,7 +11,6 @@ namespace millsim::measure {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kBallR = 2e-3, kBowlR = 2e-3, kPlate = 0.4e-3, kHoleR = 0.6e-3, kHoleDepth = 1.5e-3;
 
 // The slab y < 0 minus a ball of radius R at the origin: exact outside too
@@ -96,7 +95,7 @@ std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const Tool
       // The shaft leans over the edge (the Z axis), its axis `d` inside its radius 2.5 mm from the burr centre.
       for (double d : shaftDepths)
         for (double deg : {20.0, 40.0, 60.0}) {
-          const double th = deg * kDeg, s0 = 2.5e-3;
+          const double th = deg * kRadiansPerDegree, s0 = 2.5e-3;
           const glm::dvec3 dir(-std::sin(th), std::cos(th), 0.0), n(std::cos(th), std::sin(th), 0.0);
           const glm::dvec3 c = n * (tool.shaftRadius - d) - dir * s0 + glm::dvec3(0, 0, shift.z);
           out.push_back({Pose{c, rotationBetween({0, 1, 0}, dir)}, c + n * 1.5e-3, d});
@@ -108,7 +107,7 @@ std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const Tool
       // the far rim. The phase shifts along Z (the wall curves away a little).
       for (double d : holeDepths)
         for (double deg : {15.0, 30.0}) {
-          const double th = deg * kDeg;
+          const double th = deg * kRadiansPerDegree;
           const glm::dvec3 dir(std::sin(th), std::cos(th), 0.0);
           const glm::dvec3 c = glm::dvec3(-(kHoleR - tool.tipRadius) - d, -kHoleDepth + tool.tipRadius - d, shift.x);
           out.push_back({Pose{c, rotationBetween({0, 1, 0}, dir)}, glm::dvec3(0.0, 1e-3, shift.x), d});
@@ -125,7 +124,7 @@ std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const Tool
     const glm::dvec3 t = glm::normalize(glm::cross(n, glm::dvec3(0, 0, 1)));
     for (double d : burrDepths)
       for (double deg : {0.0, 30.0, 60.0}) {
-        const glm::dvec3 dir = std::cos(deg * kDeg) * n + std::sin(deg * kDeg) * t;
+        const glm::dvec3 dir = std::cos(deg * kRadiansPerDegree) * n + std::sin(deg * kRadiansPerDegree) * t;
         // Along the edge the phase shifts along Z only (elsewhere the pose would leave the edge).
         const glm::dvec3 c = contact + n * (tool.tipRadius - d) +
                              (scene.name == "edge" ? glm::dvec3(0, 0, glm::length(shift)) : shift);

@@ -16,7 +16,7 @@ namespace millsim::measure {
 namespace {
 
 const ToolGeometry kTool{0.6e-3, 0.4e-3, 15e-3};  // as bench/RendererBench.cpp
-constexpr double kHoleDepth = 2.5e-3;             // the §8.2 procedure's hole
+constexpr double kProcedureHoleDepth = 2.5e-3;             // the §8.2 procedure's hole
 
 double occlusalTop(const VoxelScene& scene) {
   double top = 12e-3;
@@ -38,7 +38,7 @@ VoxelVolume& phantom(bool fine, RatePose pose) {
     VoxelScene scene;
     scene.addVolume(volume, glm::dmat4(1.0), 700.0);
     const double top = occlusalTop(scene);
-    for (double d = 0.0; d <= kHoleDepth - kTool.tipRadius; d += 0.02e-3) scene.mill({0.0, top - d, 0.0}, kTool.tipRadius);
+    for (double d = 0.0; d <= kProcedureHoleDepth - kTool.tipRadius; d += 0.02e-3) scene.mill({0.0, top - d, 0.0}, kTool.tipRadius);
   }
   return volume;
 }
@@ -57,7 +57,7 @@ RateResult measureRate(const RendererSpec& spec, long frames, const std::string&
   scene.addVolume(volume, glm::dmat4(1.0), 700.0);
   const double top = occlusalTop(scene);
   // The surface the burr presses on (the occlusal surface, or the hole's bottom), then 0.3 mm further in.
-  const double rest = pose == RatePose::Deep ? top - kHoleDepth : top;
+  const double rest = pose == RatePose::Deep ? top - kProcedureHoleDepth : top;
   const double y = rest + contactOffset(*node, kTool, volume.voxelSize().x) - 0.3e-3;
   auto algorithm = node->compile(kTool, scene);
   const double above = top + 2e-3;

@@ -11,22 +11,22 @@ namespace millsim::measure {
 
 namespace {
 
-constexpr double kH = 0.1e-3;  // voxel size of the stability scenes
+constexpr double kStabilityVoxel = 0.1e-3;  // voxel size of the stability scenes
 
 // Half-spaces (material below y = 0): a long one to slide on, a deep one to strike.
 AnalyticScene& slideScene() {
-  static auto s = voxelise(halfSpace({-5e-3, -5e-3, -3e-3}, {35e-3, 1.5e-3, 3e-3}), kH);
+  static auto s = voxelise(halfSpace({-5e-3, -5e-3, -3e-3}, {35e-3, 1.5e-3, 3e-3}), kStabilityVoxel);
   return *s;
 }
 AnalyticScene& impactScene() {
-  static auto s = voxelise(halfSpace({-4e-3, -45e-3, -4e-3}, {4e-3, 1.5e-3, 4e-3}), kH);
+  static auto s = voxelise(halfSpace({-4e-3, -45e-3, -4e-3}, {4e-3, 1.5e-3, 4e-3}), kStabilityVoxel);
   return *s;
 }
 
 double offsetFor(const RendererSpec& spec, const HapticsRendererNode& node) {
   static std::map<std::string, double> cache;
   auto it = cache.find(spec.label());
-  if (it == cache.end()) it = cache.emplace(spec.label(), contactOffset(node, standardTool(), kH)).first;
+  if (it == cache.end()) it = cache.emplace(spec.label(), contactOffset(node, standardTool(), kStabilityVoxel)).first;
   return it->second;
 }
 

@@ -11,7 +11,7 @@ namespace millsim {
 
 namespace {
 
-const AudioModule* open(std::string& error) {
+const AudioModule* openAudioModule(std::string& error) {
   const auto* module = static_cast<const AudioModule*>(
       openSiblingLibrary("libmillsim_audio.so", "MILLSIM_AUDIO_LIBRARY", "millsim_audio_module", "audio",
                          "live sound needs SDL2: Debian package libsdl2-2.0-0", error));
@@ -29,7 +29,7 @@ const AudioModule& loadAudioModule() {
   static const AudioModule* module = nullptr;
   static std::string error;
   std::lock_guard lock(mutex);
-  if (!module && error.empty()) module = open(error);
+  if (!module && error.empty()) module = openAudioModule(error);
   if (!module) throw std::runtime_error(error);
   return *module;
 }

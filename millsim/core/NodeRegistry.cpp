@@ -71,4 +71,10 @@ std::vector<std::string> closestNames(std::string_view word, const std::vector<s
   return out;
 }
 
+std::string didYouMean(const std::vector<std::string>& suggestions) {
+  std::string s;
+  for (const auto& n : suggestions) s += (s.empty() ? "; did you mean '" : "', '") + n;
+  return s.empty() ? s : s + "'?";
+}
+
 }  // namespace millsim

@@ -53,5 +53,7 @@ std::size_t editDistance(std::string_view a, std::string_view b);
 // Names from `candidates` close enough to `word` to suggest, best first.
 std::vector<std::string> closestNames(std::string_view word, const std::vector<std::string>& candidates,
                                       std::size_t max = 3);
+// "; did you mean 'a', 'b'?" for the suggestions, or "" when there are none.
+std::string didYouMean(const std::vector<std::string>& suggestions);
 
 }  // namespace millsim

@@ -12,7 +12,7 @@ namespace millsim {
 
 namespace {
 
-const GraphicsModule* open(std::string& error) {
+const GraphicsModule* openGraphicsModule(std::string& error) {
   const auto* module = static_cast<const GraphicsModule*>(
       openSiblingLibrary("libmillsim_graphics.so", "MILLSIM_GRAPHICS_LIBRARY", "millsim_graphics_module", "graphics",
                          "graphics needs Mesa's OSMesa: Debian package libosmesa6", error));
@@ -30,7 +30,7 @@ const GraphicsModule& loadGraphicsModule() {
   static const GraphicsModule* module = nullptr;
   static std::string error;
   std::lock_guard lock(mutex);
-  if (!module && error.empty()) module = open(error);
+  if (!module && error.empty()) module = openGraphicsModule(error);
   if (!module) throw GraphicsError(error);
   return *module;
 }

@@ -12,7 +12,7 @@ namespace millsim {
 
 namespace {
 
-const MedicalModule* open(std::string& error) {
+const MedicalModule* openMedicalModule(std::string& error) {
   const auto* module = static_cast<const MedicalModule*>(openSiblingLibrary(
       "libmillsim_medical.so", "MILLSIM_MEDICAL_LIBRARY", "millsim_medical_module", "medical-image",
       "MetaImage, VTI and DICOM reading needs VTK 9.1 and GDCM 3.0: Debian packages libvtk9.1 and libgdcm3.0",
@@ -31,7 +31,7 @@ const MedicalModule& loadMedicalModule() {
   static const MedicalModule* module = nullptr;
   static std::string error;
   std::lock_guard lock(mutex);
-  if (!module && error.empty()) module = open(error);
+  if (!module && error.empty()) module = openMedicalModule(error);
   if (!module) throw VolumeError(error);
   return *module;
 }

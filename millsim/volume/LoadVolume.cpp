@@ -4,6 +4,7 @@
 #include <fstream>
 #include <string>
 
+#include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VolumeIO.h"
 
@@ -16,10 +17,6 @@ namespace {
 const char* const kSupported =
     ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, or phantom:tooth";
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 // "scheme:" at the start of a url (two or more letters, so that "C:" is not one).
 std::string urlScheme(const std::string& url) {
@@ -28,7 +25,7 @@ std::string urlScheme(const std::string& url) {
                             url[i] == '.'))
     ++i;
   if (i >= 2 && i < url.size() && url[i] == ':' && std::isalpha(static_cast<unsigned char>(url[0])))
-    return lower(url.substr(0, i));
+    return asciiLower(url.substr(0, i));
   return "";
 }
 
@@ -88,7 +85,7 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   if (!fs::is_regular_file(st))
     throw VolumeError(name + ": is " + kindOf(st) + "; volumes are read from regular files or folders");
 
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = asciiLower(path.extension().string());
   if (ext == ".vdb") return LoadedVolume{readVdb(path, airValue), "vdb", name};
   if (ext == ".nrrd" || ext == ".nhdr") return LoadedVolume{readNrrd(path, airValue), "nrrd", name};
   if (ext == ".mha" || ext == ".mhd") return LoadedVolume{readMetaImage(path, airValue), "metaimage", name};

@@ -45,10 +45,6 @@ using vtkio::toFloats;
 using vtkio::trim;
 using vtkio::VtkMessages;
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::vector<std::string> words(const std::string& s) {
   std::istringstream in(s);
@@ -72,7 +68,7 @@ const std::map<std::string, MetaType>& metaTypes() {
 }
 
 bool isTrue(const std::string& v) {
-  const std::string l = lower(v);
+  const std::string l = asciiLower(v);
   return l == "true" || l == "1" || l == "yes";
 }
 
@@ -133,7 +129,7 @@ VoxelVolume medical::readMetaImage(const fs::path& file, float airValue) {
       if (trim(line).empty()) continue;
       throw VolumeError(name + ": not a MetaImage header: line '" + line.substr(0, 60) + "' is not 'Key = Value'");
     }
-    const std::string key = lower(trim(line.substr(0, eq)));
+    const std::string key = asciiLower(trim(line.substr(0, eq)));
     f[key] = trim(line.substr(eq + 1));
     if (key == "elementdatafile") {
       sawDataFile = true;
@@ -146,7 +142,7 @@ VoxelVolume medical::readMetaImage(const fs::path& file, float airValue) {
     return it == f.end() ? std::string() : it->second;
   };
 
-  if (!get("objecttype").empty() && lower(get("objecttype")) != "image")
+  if (!get("objecttype").empty() && asciiLower(get("objecttype")) != "image")
     throw VolumeError(name + ": ObjectType is '" + get("objecttype") + "', not Image");
   if (get("ndims") != "3") {
     if (get("ndims").empty()) throw VolumeError(name + ": the MetaImage header has no NDims");

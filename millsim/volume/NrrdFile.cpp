@@ -87,10 +87,6 @@ std::vector<std::string> words(const std::string& s) {
   return w;
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string fmt(double v) {
   std::ostringstream o;
@@ -220,7 +216,7 @@ NrrdHeader parseHeader(const fs::path& file) {
       if (line.find(":=") != std::string::npos) continue;  // key/value pair, not a field
       throw VolumeError(name + ": malformed NRRD header line '" + line + "' (expected 'field: value')");
     }
-    const std::string field = lower(trim(line.substr(0, colon)));
+    const std::string field = asciiLower(trim(line.substr(0, colon)));
     const std::string value = trim(line.substr(colon + 2));
     const auto bad = [&](const std::string& what) {
       return VolumeError(name + ": bad NRRD field '" + field + ": " + value + "': " + what);
@@ -263,9 +259,9 @@ NrrdHeader parseHeader(const fs::path& file) {
     } else if (field == "type") {
       h.typeName = value;
     } else if (field == "encoding") {
-      h.encoding = lower(value);
+      h.encoding = asciiLower(value);
     } else if (field == "endian") {
-      h.endian = lower(value);
+      h.endian = asciiLower(value);
     } else if (field == "data file" || field == "datafile") {
       h.dataFile = value;
     } else if (field == "byte skip" || field == "byteskip") {
@@ -305,7 +301,7 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
   // --- Shape: one component, three spatial axes.
   if (h.dimension == 0) throw VolumeError(name + ": the NRRD header has no 'dimension' field");
   for (std::size_t a = 0; a < h.kinds.size(); ++a) {
-    const std::string k = lower(h.kinds[a]);
+    const std::string k = asciiLower(h.kinds[a]);
     if (k != "domain" && k != "space" && k != "???" && k != "none")
       throw VolumeError(name + ": axis " + std::to_string(a) + " has kind '" + h.kinds[a] +
                         "': multi-component data is not supported (one value per voxel, three spatial axes)");

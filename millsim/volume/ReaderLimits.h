@@ -1,5 +1,5 @@
 #pragma once
-// Limits the volume readers share, so that a hostile file costs little before
+// Limits (and the case-blind key compare) the volume readers share, so that a hostile file costs little before
 // it is refused.
 //
 // Reading the text header of a volume file (NRRD, MetaImage) line by line
@@ -9,6 +9,7 @@
 // either is a VolumeError naming the file and the limit once kMaxHeaderBytes
 // have been read. Real headers are a few hundred bytes to a few kilobytes.
 // Internal to millsim/volume (listed in cmake/private-headers.txt).
+#include <cctype>
 #include <cstdint>
 #include <istream>
 #include <string>
@@ -16,6 +17,12 @@
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
+
+// Header keys and values compare case-blind (ASCII), as the formats' readers do.
+inline std::string asciiLower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
 
 inline constexpr std::uintmax_t kMaxHeaderBytes = std::uintmax_t(1) << 20;  // 1 MiB
 

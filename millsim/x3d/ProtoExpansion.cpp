@@ -5,13 +5,6 @@
 namespace millsim {
 
 namespace {
-std::string didYouMean(const std::string& word, const std::vector<std::string>& names) {
-  auto s = closestNames(word, names);
-  std::string out;
-  for (const auto& n : s) out += (out.empty() ? "; did you mean '" : "', '") + n;
-  return out.empty() ? out : out + "'?";
-}
-
 std::string typeAndAccess(const ProtoFieldDecl& f) {
   return std::string(accessName(f.access)) + " " + std::string(fieldTypeName(f.type));
 }
@@ -39,7 +32,7 @@ std::string ProtoInstanceInterface::unknownField(const std::string& name) const 
   for (const auto& f : proto_->fields) list += (list.empty() ? "'" : ", '") + f.name + "'";
   return "proto '" + proto_->name + "' has no field '" + name + "' (" +
          (list.empty() ? std::string("it declares no fields") : "its fields are " + list) + ")" +
-         didYouMean(name, proto_->fieldNames());
+         didYouMean(closestNames(name, proto_->fieldNames()));
 }
 
 InstanceField* ProtoInstanceInterface::setValue(const std::string& name, const std::optional<std::string>& value,
@@ -90,7 +83,7 @@ void ProtoInstanceInterface::connect(Node& node, const std::string& nodeField, c
     std::vector<std::string> names;
     for (Field* f : node.fields()) names.emplace_back(f->name());
     sink.error(at, "IS connect: " + node.typeName() + " has no field '" + nodeField + "'" + where +
-                       didYouMean(nodeField, names));
+                       didYouMean(closestNames(nodeField, names)));
     return;
   }
   InstanceField* f = field(protoField);

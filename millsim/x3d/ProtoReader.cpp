@@ -11,15 +11,6 @@ namespace millsim {
 
 namespace fs = std::filesystem;
 
-namespace {
-std::string didYouMean(const std::vector<std::string>& suggestions) {
-  std::string s;
-  for (const auto& n : suggestions) s += (s.empty() ? "; did you mean '" : "', '") + n;
-  return s.empty() ? s : s + "'?";
-}
-bool isBlank(std::string_view s) { return s.find_first_not_of(" \t\r\n") == std::string_view::npos; }
-}  // namespace
-
 // ProtoDeclare and ExternProtoDeclare are statements of <Scene> and <ProtoBody>.
 bool ProtoReader::readStatement(Document& doc, xmlNode* el) {
   const std::string_view n = nameOf(el);

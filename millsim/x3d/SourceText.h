@@ -11,6 +11,9 @@
 
 namespace millsim {
 
+// Only spaces, tabs and line ends (XML's white space).
+inline bool isBlank(std::string_view s) { return s.find_first_not_of(" \t\r\n") == std::string_view::npos; }
+
 class SourceText {
 public:
   SourceText(std::string fileLabel, std::string text);

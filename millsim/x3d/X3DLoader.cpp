@@ -36,13 +36,6 @@ std::string joinNames(const std::vector<std::string>& names) {
   return s;
 }
 
-std::string didYouMean(const std::vector<std::string>& suggestions) {
-  if (suggestions.empty()) return {};
-  return "; did you mean " + joinNames(suggestions) + "?";
-}
-
-bool isBlank(std::string_view s) { return s.find_first_not_of(" \t\r\n") == std::string_view::npos; }
-
 class Loader : private ProtoHost {
 public:
   Loader(const NodeRegistry& registry, const LoadOptions& options)
