@@ -115,11 +115,15 @@ protected:
     const char* why;
   };
   // #2's and #3's earlier misses went with issue 14 (deepestPoints, pointShellScale 1).
-  static constexpr std::array<KnownMiss, 1> kKnownMisses{{
+  static constexpr std::array<KnownMiss, 3> kKnownMisses{{
       {"BarbicRenderer", "ball direction", 5.0,
        "the scale-1 point shell on the voxelised ball: 3.1 and 4.6 degrees at 2 of the 12 poses (0.15 mm in along "
        "(0.3, 1, 0.2), 0.05 mm in along (1, 0.2, 0.05)); RMS under 3 (Barbic.AtItsDefaultsAFlatFacePushesStraightOut"
        "AndABallAlongItsNormal)"},
+      {"SurfacePointRenderer", "physical bowl direction", 5.0,
+       "4.7 degrees RMS: the burr's tracked deepest line in the concave wall (docs/accuracy.md, issue 14)"},
+      {"BarbicRenderer", "physical bowl direction", 4.0,
+       "3.5 degrees RMS: the scale-1 point shell on the voxelised bowl (docs/accuracy.md, issue 14)"},
   }};
   // The bound `ratio` must meet for this renderer; prints what a known miss excuses.
   double bound(const char* check, double strict, double ratio) const {
@@ -288,6 +292,20 @@ TEST_P(EveryRenderer, ABurrInABowlWithItsShaftOnTheRimIsPushedOutOnce) {
   ASSERT_TRUE(row);
   EXPECT_EQ(row->missed, 0.0) << "poses pressed into the bowl with no force";
   EXPECT_LT(row->forceRms, 0.10) << "force RMS relative to the reference's";
+}
+
+// Issue 14's direction goal on its three surfaces, against the rigid tool at
+// h = 0.1 mm: flat (half-space), convex (ball) and concave (bowl), each
+// pressed straight and obliquely 0.05-0.6 mm in, within 3° RMS of the
+// reference's force. #1 with the burr field's normal from its fitted deepest
+// direction alone missed it on the ball: 3.24°.
+TEST_P(EveryRenderer, OnFlatConvexAndConcaveSurfacesTheForceIsWithinThreeDegreesRms) {
+  for (const char* scene : {"half-space", "ball", "bowl"}) {
+    const auto row = physicalScene(scene);
+    ASSERT_TRUE(row) << scene;
+    const std::string check = "physical " + std::string(scene) + " direction";
+    EXPECT_LE(row->directionRms, bound(check.c_str(), 3.0, row->directionRms)) << scene << ", degrees RMS";
+  }
 }
 
 // Issue 14's convergence must-hold: halving the voxel size reduces each
