@@ -411,16 +411,16 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
 // Cost model (`millsim check`, docs/algorithms.md "Frame cost model"): the
 // worst frame is the burr's proxy at its most (a surface entry, then every
 // tangent-plane step refused and tried twice halved: about 10 + 12 per step
-// field evaluations, each some 50 samples with feelBurrSurface's BurrField)
+// field evaluations, each some 45 samples with feelBurrSurface's BurrField)
 // plus the shaft: the surface shaft's ring seeds (8 a vertex) and deepest
 // line (about 200), or the paper's first-contact search (eq. 3–4, vertexCount
 // x (1 + translationSteps + rotationSteps)); 55 ns a sample (`bench rates`,
 // the paper's shaft: vertexCount 51 -> 1000 took 5.23 -> 57.7 us a frame).
-// At the defaults (bench procedure, §8.2, three runs on a loaded 2-core VM):
-// milling frames p99 140–152 µs against an estimate of 259 µs.
+// At the defaults (bench procedure, §8.2): milling frames p99 97 µs, worst
+// 204 µs, against an estimate of 236 µs.
 FrameCostEstimate LineProxyRenderer::estimateFrameCost(const FrameCostContext&) const {
   constexpr double kNsPerSample = 55.0;
-  const long perEvaluation = feelBurrSurface.get() ? 50 : 1;
+  const long perEvaluation = feelBurrSurface.get() ? 45 : 1;
   const long burr = perEvaluation * (10L + 12L * proxyIterations.get());
   const long shaft = feelShaftSurface.get() ? long(vertexCount.get()) * 8L + 200L
                                             : long(vertexCount.get()) * (1L + translationSteps.get() + rotationSteps.get());

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -37,10 +36,6 @@ std::array<glm::dvec3, 26> cubeDirections() {
   return d;
 }
 const std::array<glm::dvec3, 26> kDirections = cubeDirections();
-// Cosines of the angle between the surface's gradient and the maximiser
-// direction: below 10° the gradient is the normal, past 20° u is (evaluate()).
-const double kGradientTrustedAbove = std::cos(10.0 * std::numbers::pi / 180.0);
-const double kGradientKeptBelow = std::cos(20.0 * std::numbers::pi / 180.0);
 
 }  // namespace
 
@@ -80,38 +75,16 @@ void BurrField::evaluate(const glm::dvec3& c) const {
     best = sn;
     u = next;
   }
-  at_ = c;
-  value_ = best;
-  direction_ = u;
-  cached_ = true;
-  gradientCached_ = false;
-}
-
-void BurrField::evaluateGradient(const glm::dvec3& c) const {
-  if (gradientCached_) return;
-  const HapticScene& scene = *scene_;
-  const glm::dvec3& u = direction_;
-  // ∇g is ∇s at the maximiser (the envelope theorem). Where two curved
-  // surfaces touch (a burr on a ball), s peaks broadly over the sphere and u
-  // lands a few degrees off the contact, while the surface's own gradient
-  // hardly turns over that distance: it is the better normal (a ball's force
-  // direction 3.2° → 1.1° RMS against the rigid tool, bench physical at
-  // h = 0.1 mm). In milled pits the two can disagree by far more, and the
-  // gradient alone stepped #1's force by 0.27 N in one §8.2 milling frame: it
-  // is trusted within 10° of u (no contact of the physical suite exceeds that)
-  // and blended out to u by 20°. The material must deepen along u (a quarter
-  // voxel each way), else there is no gradient and the proxy stays.
+  // ∇g is ∇s at the maximiser (the envelope theorem), which is parallel to u
+  // there; its size is the derivative of s along u (a quarter voxel each way).
   const double e = 0.25 * scene.voxelSize();
   const double along = (scene.field(c + (radius_ + e) * u) - scene.field(c + (radius_ - e) * u)) / (2.0 * e);
-  const glm::dvec3 gs = scene.gradient(c + radius_ * u);
-  const double gl = glm::length(gs);
-  glm::dvec3 g(0.0);
-  if (along > 0.0 && std::isfinite(along) && gl > 0.0 && std::isfinite(gl)) {
-    const double w = std::clamp((glm::dot(gs / gl, u) - kGradientKeptBelow) / (kGradientTrustedAbove - kGradientKeptBelow), 0.0, 1.0);
-    g = gl * glm::normalize((1.0 - w) * u + w * (gs / gl));
-  }
+  const glm::dvec3 g = along > 0.0 && std::isfinite(along) ? along * u : glm::dvec3(0.0);
+  at_ = c;
+  value_ = best;
   gradient_ = g;
-  gradientCached_ = true;
+  direction_ = u;
+  cached_ = true;
 }
 
 const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3& probe) {

@@ -50,16 +50,15 @@ private:
 // The burr sphere's dilation of the scene: g(c) = max over |u| = 1 of
 // s(c + r·u), > 0 exactly when the burr centred at c has part of its surface in
 // material. Evaluated at 26 fixed directions (cube faces, edges, corners) plus
-// the last maximiser, then refined by three parabola fits over the sphere's
-// tangent angles. Its gradient is ∇s at the maximiser (the envelope theorem):
-// the surface's gradient there where it lies within 10° of the maximiser's
-// direction u, else u (blended between 10° and 20°; evaluate() says why). The
-// burr's contact normal is minus that. About 42 field samples a value and 8
-// more for the gradient; the last evaluation is cached, so value() then
-// gradient() at one point costs one. No allocation.
+// the last maximiser, then refined by two parabola fits over the sphere's
+// tangent angles. Its gradient is ∇s at the maximiser (the envelope theorem),
+// parallel to the maximiser's direction u there: the burr's contact normal is
+// −u. About 40 field samples per evaluation; the last one is cached,
+// so value() then gradient() at one point costs one evaluation. No allocation.
 class BurrField final : public ProxyField {
 public:
   explicit BurrField(double radius) : radius_(radius) {}
+  // The scene of this frame (the field reads it until the next call).
   // The scene of this frame (the field reads it until the next call). Forgets
   // the cached evaluation: milling may have changed the scene since.
   void bind(const HapticScene& scene) {
@@ -67,7 +66,7 @@ public:
     scene_ = &scene;
   }
   double value(const glm::dvec3& c) const override { return evaluate(c), value_; }
-  glm::dvec3 gradient(const glm::dvec3& c) const override { return evaluate(c), evaluateGradient(c), gradient_; }
+  glm::dvec3 gradient(const glm::dvec3& c) const override { return evaluate(c), gradient_; }
   double voxelSize() const override;
   // The unit direction from the centre to the burr's deepest point at the last
   // evaluation (where it touches, in contact).
@@ -76,16 +75,12 @@ public:
 
 private:
   void evaluate(const glm::dvec3& c) const;
-  // The gradient at the point evaluate() last saw, on first request: a surface
-  // entry's search and bisection ask only for values.
-  void evaluateGradient(const glm::dvec3& c) const;
 
   double radius_;
   const HapticScene* scene_ = nullptr;
   mutable bool cached_ = false;
   mutable glm::dvec3 at_{0.0};
   mutable double value_ = -1.0;
-  mutable bool gradientCached_ = false;
   mutable glm::dvec3 gradient_{0.0};
   mutable glm::dvec3 direction_{0.0, -1.0, 0.0};  // the last maximiser (the next evaluation's first guess)
 };
