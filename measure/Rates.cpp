@@ -16,7 +16,7 @@ namespace millsim::measure {
 namespace {
 
 const ToolGeometry kTool{0.6e-3, 0.4e-3, 15e-3};  // as bench/RendererBench.cpp
-constexpr double kProcedureHoleDepth = 2.5e-3;             // the §8.2 procedure's hole
+constexpr double kProcedureHoleDepth = 2.5e-3;    // the §8.2 procedure's hole
 
 double occlusalTop(const VoxelScene& scene) {
   double top = 12e-3;

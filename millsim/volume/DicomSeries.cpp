@@ -53,17 +53,12 @@ namespace millsim {
 
 namespace {
 
-std::string trim(const std::string& s) {
+// DICOM pads its strings with spaces or NULs.
+std::string trimPadded(const std::string& s) {
   std::size_t b = 0, e = s.size();
   while (b < e && (std::isspace(static_cast<unsigned char>(s[b])) || s[b] == '\0')) ++b;
   while (e > b && (std::isspace(static_cast<unsigned char>(s[e - 1])) || s[e - 1] == '\0')) --e;
   return s.substr(b, e - b);
-}
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
 }
 
 std::string hex4(unsigned v) {
@@ -184,7 +179,7 @@ private:
     return out;
   }
   std::string text(const Element& e) const {
-    return trim(std::string(reinterpret_cast<const char*>(&b_[e.value]), e.length));
+    return trimPadded(std::string(reinterpret_cast<const char*>(&b_[e.value]), e.length));
   }
 
   unsigned u16(std::size_t p, bool big) const {
@@ -338,7 +333,7 @@ std::vector<double> numbers(const std::string& s) {
   std::vector<double> v;
   std::istringstream in(s);
   for (std::string t; std::getline(in, t, '\\');) {
-    t = trim(t);
+    t = trimPadded(t);
     if (t.empty()) continue;
     char* end = nullptr;
     const double x = std::strtod(t.c_str(), &end);
@@ -357,7 +352,7 @@ Slice readSliceHeader(const fs::path& file) {
     throw VolumeError(name + ": cannot read the DICOM header (corrupt or not DICOM)");
   gdcm::StringFilter sf;
   sf.SetFile(reader.GetFile());
-  const auto str = [&](std::uint16_t g, std::uint16_t e) { return trim(sf.ToString(gdcm::Tag(g, e))); };
+  const auto str = [&](std::uint16_t g, std::uint16_t e) { return trimPadded(sf.ToString(gdcm::Tag(g, e))); };
 
   Slice s;
   s.file = file;

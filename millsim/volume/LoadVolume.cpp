@@ -17,7 +17,6 @@ namespace {
 const char* const kSupported =
     ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, or phantom:tooth";
 
-
 // "scheme:" at the start of a url (two or more letters, so that "C:" is not one).
 std::string urlScheme(const std::string& url) {
   std::size_t i = 0;

@@ -40,18 +40,8 @@ namespace millsim {
 
 namespace {
 
-using vtkio::fmt;
 using vtkio::toFloats;
-using vtkio::trim;
 using vtkio::VtkMessages;
-
-
-std::vector<std::string> words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> w;
-  for (std::string t; in >> t;) w.push_back(t);
-  return w;
-}
 
 struct MetaType {
   const char* name;

@@ -73,27 +73,6 @@ std::optional<Scalar> nrrdType(const std::string& s) {
   return std::nullopt;
 }
 
-std::string trim(const std::string& s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
-
-std::vector<std::string> words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> w;
-  for (std::string t; in >> t;) w.push_back(t);
-  return w;
-}
-
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 // Parses a whole token as a number; NaN and inf are accepted here and refused by the callers.
 bool parseDouble(const std::string& s, double& out) {
   if (s.empty()) return false;

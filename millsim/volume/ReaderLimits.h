@@ -1,6 +1,6 @@
 #pragma once
-// Limits (and the case-blind key compare) the volume readers share, so that a hostile file costs little before
-// it is refused.
+// What the volume readers share: limits, so that a hostile file costs little
+// before it is refused, and the small text helpers of their headers.
 //
 // Reading the text header of a volume file (NRRD, MetaImage) line by line
 // with a cap on the whole header. std::getline would read a 1 GB line into
@@ -12,7 +12,9 @@
 #include <cctype>
 #include <cstdint>
 #include <istream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "millsim/volume/VoxelVolume.h"
 
@@ -22,6 +24,25 @@ namespace millsim {
 inline std::string asciiLower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
+}
+inline std::string trim(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(b, e - b);
+}
+// The white-space separated words of a header value.
+inline std::vector<std::string> words(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> w;
+  for (std::string t; in >> t;) w.push_back(t);
+  return w;
+}
+// A number as a stream prints it, for messages.
+inline std::string fmt(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
 }
 
 inline constexpr std::uintmax_t kMaxHeaderBytes = std::uintmax_t(1) << 20;  // 1 MiB

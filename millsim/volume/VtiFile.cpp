@@ -35,9 +35,7 @@ namespace millsim {
 
 namespace {
 
-using vtkio::fmt;
 using vtkio::toFloats;
-using vtkio::trim;
 using vtkio::VtkMessages;
 
 // VTK's XML parser keeps every element and attribute in memory, so a file

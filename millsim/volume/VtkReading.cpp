@@ -12,19 +12,6 @@
 
 namespace millsim::vtkio {
 
-std::string trim(const std::string& s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 void VtkMessages::collect(vtkObject*, unsigned long, void* self, void* call) {
   if (!call) return;
   std::string m = static_cast<const char*>(call);

@@ -14,9 +14,6 @@ class vtkObject;
 
 namespace millsim::vtkio {
 
-std::string trim(const std::string& s);
-std::string fmt(double v);  // as a stream prints it, for messages
-
 // Collects what VTK would print, so that it goes into the exception instead.
 struct VtkMessages {
   std::string text;
