@@ -1,5 +1,7 @@
 #include "millsim/volume/VtkReading.h"
 
+#include "millsim/volume/ReaderLimits.h"
+
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
