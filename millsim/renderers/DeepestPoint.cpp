@@ -78,6 +78,29 @@ double fitLeast(const T& t, double& a, double& b, double ta, const double* scale
   return ta;
 }
 
+// Moves x to the most f(x) nearby: per scale a parabola through f at
+// ±step, a move to its vertex (clamped to two steps) if that gains over the
+// samples, else to the better sample if it gains.
+template <class T>
+double fitMost(const T& t, double& p, double tp, const double* scales, int count, double step) {
+  for (int k = 0; k < count; ++k) {
+    const double e = scales[k] * step, up = t(p + e), down = t(p - e);
+    const double slope = (up - down) / (2.0 * e), curve = (up - 2.0 * tp + down) / (e * e);
+    double move = 0.0;
+    if (curve < 0.0) move = std::clamp(-slope / curve, -2.0 * e, 2.0 * e);
+    else if (up != down) move = up > down ? 2.0 * e : -2.0 * e;
+    if (move != 0.0) {
+      const double tn = t(p + move);
+      if (tn > tp && tn >= std::max(up, down)) {
+        p += move, tp = tn;
+        continue;
+      }
+    }
+    if (std::max(up, down) > tp) p += up > down ? e : -e, tp = std::max(up, down);
+  }
+  return tp;
+}
+
 // Coarse steps to find the contact, then finer ones: where the depth has a
 // kink (an edge), a fit's vertex is off the kink by up to its step.
 constexpr double kFresh[] = {2.0, 2.0, 1.0, 0.5, 0.25, 0.1};
@@ -163,15 +186,38 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
     return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), guess,
                         -rho, tMax);
   };
-  // Where the axis itself is in material the radial lines no longer say which
-  // way is out: the fit stays out of there, and a contact already there keeps
-  // its line (as eq. 19 keeps a slice's reaction).
+  // Where the axis itself is in material the nearest crossing of the radial
+  // lines is behind the axis, and the deepest line no longer says which way
+  // is out (it runs along the rim, where the material is longest): the fit
+  // stays out of there, and a contact already there turns its line to the
+  // shortest way out at its height instead (shortestEscape).
   auto t = [&](double yy, double p) {
     const double at = line(yy, p);
     return at < 0.0 ? tMax : at;
   };
   const double t0 = line(y, phi);
-  if (t0 < 0.0) return t0;
+  if (t0 < 0.0) {
+    // A rigid shaft leaves by the shortest way out at each height, and is
+    // held by the height where that way is longest: alternately the line at
+    // its height with the nearest crossing behind the axis, and the height
+    // (along that line's direction) where the crossing is farthest behind.
+    // Searched up to 3ρ behind the axis (depth 4ρ): the deepest axis the
+    // shaft can be pushed out of along its own radius, and more.
+    auto behind = [&](double yy, double p) {
+      return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), 0.0,
+                          -3.0 * rho, tMax);
+    };
+    const bool fresh = tGuess >= rho;
+    const double* scales = fresh ? kFresh : kTracking;
+    const int count = fresh ? 6 : 3;
+    double at = behind(y, phi);
+    for (int round = 0; round < 2; ++round) {
+      at = fitMost([&](double p) { return behind(y, p); }, phi, at, scales, count, std::min(0.6, h / rho));
+      at = -fitMost([&](double yy) { return -behind(yy, phi); }, y, -at, scales, count, h);
+      y = std::clamp(y, y0, y1);
+    }
+    return at;
+  }
   guess = t0;
   const bool fresh = tGuess >= rho;
   // A voxel across on the shaft's surface, and along it.

@@ -38,6 +38,9 @@ double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, gl
 // The shaft (axis c + y·R·ŷ for y in [y0, y1], radius rho): moves (y, phi) —
 // the radial line from the axis at y towards R·(cos phi, 0, sin phi) — to where
 // the crossing is nearest the axis; returns that t (the depth is rho − t).
+// Where the axis at y is already in material (t < 0), the line turns to the
+// shortest way out at its height and y to where that way is longest (a
+// rigid shaft's escape, not the deepest line, which would run along a rim).
 double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, double rho, double y0,
                       double y1, double& y, double& phi, double tGuess);
 

@@ -17,6 +17,7 @@
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/Trajectory.h"
 #include "millsim/renderers/ContactShares.h"
+#include "millsim/renderers/DeepestPoint.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/run/HapticLoop.h"
 #include "millsim/run/Replay.h"
@@ -157,6 +158,38 @@ TEST(SurfacePoint, AShaftLeaningOnAnEdgeIsPushedBackWithTheReferenceMomentArm) {
     const double arm = glm::length(out.torque) / glm::length(out.force);
     EXPECT_NEAR(arm, ref.momentArm, 0.15 * ref.momentArm) << depth << " mm";
   }
+}
+
+// A shaft whose axis has gone into a convex edge (the bowl's rim in the
+// physical suite's 40° poses) leaves it by the shortest way, at the height
+// where that way is longest: what a rigid shaft there is pushed by. Keeping
+// the line it entered on (before) measured the rim 0.42 mm deep where a rigid
+// shaft is 0.55 mm in, and the force of burr and shaft 10–16° off.
+TEST(DeepestOnShaft, AnAxisInsideAnEdgeLeavesByTheShortestWay) {
+  // Material where x < 0 and y < 0: the edge is the Z axis. The shaft axis
+  // crosses it at right angles, 0.05 mm inside each face at 2 mm up the shaft.
+  VoxelVolume volume = analytic(64, [](const glm::dvec3& p) {
+    return p.x < 0.0 && p.y < 0.0 ? std::max(p.x, p.y) : std::hypot(std::max(p.x, 0.0), std::max(p.y, 0.0));
+  });
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), kIso);
+  const double rho = kTool.shaftRadius, inside = 0.05e-3, at = 2e-3;
+  const glm::dvec3 axis = glm::normalize(glm::dvec3(-1, 1, 0)), out = glm::normalize(glm::dvec3(1, 1, 0));
+  const glm::dvec3 c = glm::dvec3(-inside, -inside, 0.0) - at * axis;
+  const glm::dmat3 R = glm::mat3_cast(rotationBetween({0, 1, 0}, axis));
+  // The rigid shaft is out once the edge is ρ from the axis along `out`; on
+  // the voxelised edge (voxel centres h/2 each side of it) the iso-surface
+  // cuts the corner: bilinear density (1 − s)² along the diagonal between the
+  // centres is the iso value at s = 1 − 1/√2, (1 − √2/2)·h short of the edge.
+  const double exact = rho + std::sqrt(2.0) * inside - (1.0 - std::sqrt(0.5)) * kH;
+  // The line into the material is −out; start 30° off it, 0.03 mm down the shaft, as a fresh contact.
+  const glm::dvec3 into = glm::transpose(R) * -out;
+  double phi = std::atan2(into.z, into.x) + 0.5236, y = at - 0.03e-3, t = rho;
+  for (int frame = 0; frame < 10; ++frame) t = deepestOnShaft(scene, c, R, rho, 0.5e-3, kTool.shaftLength, y, phi, t);
+  const glm::dvec3 normal = -(R * glm::dvec3(std::cos(phi), 0.0, std::sin(phi)));
+  EXPECT_NEAR(rho - t, exact, 0.05 * kH);
+  EXPECT_LE(degreesBetween(normal, out), 3.0);
+  EXPECT_NEAR(y, at, 2.0 * kH);
 }
 
 TEST(SurfacePoint, ForceDoesNotDependOnVertexResolution) {
