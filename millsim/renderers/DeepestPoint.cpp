@@ -81,24 +81,24 @@ double fitLeast(const T& t, double& a, double& b, double ta, const double* scale
 // Moves x to the most f(x) nearby: per scale a parabola through f at
 // ±step, a move to its vertex (clamped to two steps) if that gains over the
 // samples, else to the better sample if it gains.
-template <class T>
-double fitMost(const T& t, double& p, double tp, const double* scales, int count, double step) {
+template <class F>
+double fitMost(const F& f, double& x, double fx, const double* scales, int count, double step) {
   for (int k = 0; k < count; ++k) {
-    const double e = scales[k] * step, up = t(p + e), down = t(p - e);
-    const double slope = (up - down) / (2.0 * e), curve = (up - 2.0 * tp + down) / (e * e);
+    const double e = scales[k] * step, up = f(x + e), down = f(x - e);
+    const double slope = (up - down) / (2.0 * e), curve = (up - 2.0 * fx + down) / (e * e);
     double move = 0.0;
     if (curve < 0.0) move = std::clamp(-slope / curve, -2.0 * e, 2.0 * e);
     else if (up != down) move = up > down ? 2.0 * e : -2.0 * e;
     if (move != 0.0) {
-      const double tn = t(p + move);
-      if (tn > tp && tn >= std::max(up, down)) {
-        p += move, tp = tn;
+      const double fn = f(x + move);
+      if (fn > fx && fn >= std::max(up, down)) {
+        x += move, fx = fn;
         continue;
       }
     }
-    if (std::max(up, down) > tp) p += up > down ? e : -e, tp = std::max(up, down);
+    if (std::max(up, down) > fx) x += up > down ? e : -e, fx = std::max(up, down);
   }
-  return tp;
+  return fx;
 }
 
 // Coarse steps to find the contact, then finer ones: where the depth has a
@@ -190,7 +190,7 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
   // lines is behind the axis, and the deepest line no longer says which way
   // is out (it runs along the rim, where the material is longest): the fit
   // stays out of there, and a contact already there turns its line to the
-  // shortest way out at its height instead (shortestEscape).
+  // shortest way out instead (below).
   auto t = [&](double yy, double p) {
     const double at = line(yy, p);
     return at < 0.0 ? tMax : at;
@@ -201,8 +201,8 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
     // held by the height where that way is longest: alternately the line at
     // its height with the nearest crossing behind the axis, and the height
     // (along that line's direction) where the crossing is farthest behind.
-    // Searched up to 3ρ behind the axis (depth 4ρ): the deepest axis the
-    // shaft can be pushed out of along its own radius, and more.
+    // Searched up to 3ρ behind the axis: depths up to 4ρ, beyond which the
+    // push stops growing.
     auto behind = [&](double yy, double p) {
       return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), 0.0,
                           -3.0 * rho, tMax);
