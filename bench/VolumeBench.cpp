@@ -2,8 +2,10 @@
 // milling stamp, the point shell and its incremental update.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <random>
 
+#include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
@@ -79,6 +81,46 @@ void BM_SampleNearSurfaceEightLookups(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
 }
 BENCHMARK(BM_SampleNearSurfaceEightLookups);
+
+// A milled block published to graphics (BlockChannel::tryPush, on the
+// haptic thread in every milling frame): its 512 values copied from the
+// leaf's buffer, one block near the occlusal surface.
+BlockOrigin occlusalBlock(const VoxelVolume& v) {
+  const glm::dvec3 c = v.localToIndex({0.0, 8.5e-3, 0.0});
+  return {int(c.x) & ~7, int(c.y) & ~7, int(c.z) & ~7};
+}
+
+void BM_PublishBlock(benchmark::State& state) {
+  const auto& v = phantom();
+  const BlockOrigin o = occlusalBlock(v);
+  if (!v.grid().tree().probeConstLeaf(openvdb::Coord(o.x, o.y, o.z))) state.SkipWithError("no leaf at the block");
+  BlockChannel channel(1);
+  for (auto _ : state) {
+    channel.tryPush(v, o);
+    channel.drain([](const BlockUpdate& u) { benchmark::DoNotOptimize(u.values[511]); });
+  }
+}
+BENCHMARK(BM_PublishBlock);
+
+// The same copy through getValue per voxel, as tryPush did until Dec 2026:
+// the ratio to BM_PublishBlock is the direct read's gain.
+void BM_PublishBlockPerVoxelGetValue(benchmark::State& state) {
+  const auto& v = phantom();
+  const BlockOrigin o = occlusalBlock(v);
+  const auto* leaf = v.grid().tree().probeConstLeaf(openvdb::Coord(o.x, o.y, o.z));
+  if (!leaf) state.SkipWithError("no leaf at the block");
+  std::array<float, 512> values{};
+  for (auto _ : state) {
+    if (!leaf) break;
+    for (int z = 0; z < 8; ++z)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+          values[std::size_t((z * 8 + y) * 8 + x)] = leaf->getValue(openvdb::Coord(x + o.x, y + o.y, z + o.z));
+    benchmark::DoNotOptimize(values.data());
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_PublishBlockPerVoxelGetValue);
 
 void BM_MillStamp(benchmark::State& state) {
   VoxelVolume v = makeToothPhantom(ToothPhantomOptions{});

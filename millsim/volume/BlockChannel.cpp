@@ -17,9 +17,12 @@ bool BlockChannel::tryPush(const VoxelVolume& volume, const BlockOrigin& origin)
   BlockUpdate& slot = slots_[head];
   slot.origin = origin;
   if (const auto* leaf = volume.grid().tree().probeConstLeaf(coord(origin))) {
+    // Straight from the leaf's buffer (z fastest there: x·64 + y·8 + z), not
+    // through getValue per voxel, which was 5 % of a milling frame.
+    const float* data = leaf->buffer().data();
     for (int z = 0; z < 8; ++z)
       for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) slot.values[cell(x, y, z)] = leaf->getValue(openvdb::Coord(x, y, z) + coord(origin));
+        for (int x = 0; x < 8; ++x) slot.values[cell(x, y, z)] = data[(x << 6) + (y << 3) + z];
   } else {
     slot.values.fill(volume.airValue());  // an all-air block has no leaf
   }
