@@ -181,11 +181,16 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
                       double y1, double& y, double& phi, double tGuess) {
   const double h = scene.voxelSize(), tMax = rho + 4.0 * h;
   const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
-  double guess = tGuess;
-  auto line = [&](double yy, double p) {
-    return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), guess,
-                        -rho, tMax);
+  // The radial line at height yy towards angle p, searched from t = from down to tMin.
+  auto crossing = [&](double yy, double p, double from, double tMin) {
+    return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), from,
+                        tMin, tMax);
   };
+  double guess = tGuess;
+  auto line = [&](double yy, double p) { return crossing(yy, p, guess, -rho); };
+  const bool fresh = tGuess >= rho;
+  // A voxel across on the shaft's surface, and along it.
+  const double angle = std::min(0.6, h / rho);
   // Where the axis itself is in material the nearest crossing of the radial
   // lines is behind the axis, and the deepest line no longer says which way
   // is out (it runs along the rim, where the material is longest): the fit
@@ -203,25 +208,18 @@ double deepestOnShaft(const HapticScene& scene, const glm::dvec3& c, const glm::
     // (along that line's direction) where the crossing is farthest behind.
     // Searched up to 3ρ behind the axis: depths up to 4ρ, beyond which the
     // push stops growing.
-    auto behind = [&](double yy, double p) {
-      return lineCrossing(scene, c + std::clamp(yy, y0, y1) * axis, R * glm::dvec3(std::cos(p), 0.0, std::sin(p)), 0.0,
-                          -3.0 * rho, tMax);
-    };
-    const bool fresh = tGuess >= rho;
+    auto behind = [&](double yy, double p) { return crossing(yy, p, 0.0, -3.0 * rho); };
     const double* scales = fresh ? kFresh : kTracking;
     const int count = fresh ? 6 : 3;
     double at = behind(y, phi);
     for (int round = 0; round < 2; ++round) {
-      at = fitMost([&](double p) { return behind(y, p); }, phi, at, scales, count, std::min(0.6, h / rho));
+      at = fitMost([&](double p) { return behind(y, p); }, phi, at, scales, count, angle);
       at = -fitMost([&](double yy) { return -behind(yy, phi); }, y, -at, scales, count, h);
       y = std::clamp(y, y0, y1);
     }
     return at;
   }
   guess = t0;
-  const bool fresh = tGuess >= rho;
-  // A voxel across on the shaft's surface, and along it.
-  const double angle = std::min(0.6, h / rho);
   const double tBest = fresh ? fitLeast(t, y, phi, t0, kFresh, 6, h, angle, 0.0)
                              : fitLeast(t, y, phi, t0, kTracking, 3, h, angle, 0.0);
   y = std::clamp(y, y0, y1);

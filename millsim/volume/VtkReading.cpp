@@ -1,9 +1,5 @@
 #include "millsim/volume/VtkReading.h"
 
-#include "millsim/volume/ReaderLimits.h"
-
-#include <cctype>
-#include <sstream>
 #include <stdexcept>
 
 #include <vtkAlgorithm.h>
@@ -11,6 +7,8 @@
 #include <vtkDataArray.h>
 #include <vtkExecutive.h>
 #include <vtkType.h>
+
+#include "millsim/volume/ReaderLimits.h"
 
 namespace millsim::vtkio {
 

@@ -299,7 +299,7 @@ TEST_P(EveryRenderer, ABurrInABowlWithItsShaftOnTheRimIsPushedOutOnce) {
 // Issue 14's direction goal on its three surfaces, against the rigid tool at
 // h = 0.1 mm: flat (half-space), convex (ball) and concave (bowl), each
 // pressed straight and obliquely 0.05-0.6 mm in, within 3° RMS of the
-// reference's force. #1's, #2's and #3's misses are named waivers.
+// reference's force. #1's and #3's misses are named waivers.
 TEST_P(EveryRenderer, OnFlatConvexAndConcaveSurfacesTheForceIsWithinThreeDegreesRms) {
   for (const char* scene : {"half-space", "ball", "bowl"}) {
     const auto row = physicalScene(scene);
