@@ -33,6 +33,9 @@ public:
   virtual double voxelSize() const = 0;  // the natural search step
   // Unit outward normal (−gradient, normalised), zero where it is undefined.
   glm::dvec3 outwardNormal(const glm::dvec3& p) const;
+  // The normal a proxy in contact slides against, which sets the direction
+  // of its force: the outward normal unless the field knows a better one.
+  virtual glm::dvec3 contactNormal(const glm::dvec3& p) const { return outwardNormal(p); }
 };
 
 // The scene's implicit surface s(p) itself.
@@ -52,21 +55,31 @@ private:
 // material. Evaluated at 26 fixed directions (cube faces, edges, corners) plus
 // the last maximiser, then refined by two parabola fits over the sphere's
 // tangent angles. Its gradient is ∇s at the maximiser (the envelope theorem),
-// parallel to the maximiser's direction u there: the burr's contact normal is
-// −u. About 40 field samples per evaluation; the last one is cached,
-// so value() then gradient() at one point costs one evaluation. No allocation.
+// parallel to the maximiser's direction u there. About 40 field samples per
+// evaluation; the last one is cached, so value() then gradient() at one point
+// costs one evaluation. No allocation.
+//
+// The maximiser is a poor contact normal: where the burr just touches, s
+// falls off its peak by only a few hundredths of a voxel within 5°, about as
+// much as the trilinear samples of a curved surface are off, so the argmax of
+// the voxelised field lands 4° (RMS; up to 10°) off a ball's normal.
+// contactNormal() fits a paraboloid to s over two rings 0.2 and 0.4 rad
+// around the maximiser (17 samples, twice) and takes its peak: 1.1° RMS on
+// the ball, 1.5° in a bowl (docs/algorithms.md, Algorithm #1), where a clear
+// peak; elsewhere (the burr's own pit, a crease) it fades back to the maximiser.
 class BurrField final : public ProxyField {
 public:
   explicit BurrField(double radius) : radius_(radius) {}
-  // The scene of this frame (the field reads it until the next call).
   // The scene of this frame (the field reads it until the next call). Forgets
   // the cached evaluation: milling may have changed the scene since.
   void bind(const HapticScene& scene) {
-    cached_ = false;
+    cached_ = normalCached_ = false;
     scene_ = &scene;
   }
   double value(const glm::dvec3& c) const override { return evaluate(c), value_; }
   glm::dvec3 gradient(const glm::dvec3& c) const override { return evaluate(c), gradient_; }
+  // −(the fitted peak's direction) at c; the last one is cached as well.
+  glm::dvec3 contactNormal(const glm::dvec3& c) const override;
   double voxelSize() const override;
   // The unit direction from the centre to the burr's deepest point at the last
   // evaluation (where it touches, in contact).
@@ -83,6 +96,8 @@ private:
   mutable double value_ = -1.0;
   mutable glm::dvec3 gradient_{0.0};
   mutable glm::dvec3 direction_{0.0, -1.0, 0.0};  // the last maximiser (the next evaluation's first guess)
+  mutable bool normalCached_ = false;  // contactNormal() at at_
+  mutable glm::dvec3 normal_{0.0};
 };
 
 class ProxyPoint {
