@@ -130,15 +130,15 @@ glm::dvec3 BurrField::contactNormal(const glm::dvec3& c) const {
       s[i] = scene.field(c + radius_ * glm::normalize(u + std::tan(kPeakFit.x[i]) * t1 + std::tan(kPeakFit.y[i]) * t2));
     const Eigen::Matrix<double, 6, 1> p = kPeakFit.rows * s;
     // The peak, where the fit's gradient vanishes, taken in full only where
-    // it is a clear one. Its sharpness is the fit's
-    // flattest curvature over that of a flat face (s falls off as along·r·θ²/2):
-    // 1 on a flat face, 1 ± r/R on a ball or bowl of radius R, near 0 in the
-    // burr's own round pit and across the crease of a hole's wall and bottom,
-    // where the fit strayed 9–23° from the maximiser and the proxy jumped
-    // (0.19 N in one frame of the §8.2 lean). The sampled sharpness is noisy
-    // (0.4–0.8 in a bowl whose true one is 0.75; up to 0.5 in the §8.2 lean's
-    // pit, where fading in from 0.35 let the proxy slip 0.06–0.25 N), so the
-    // step fades in from 0.5 to 0.7 and the normal turns continuously.
+    // it is a clear one. Its sharpness is the fit's flattest curvature over
+    // a flat face's (where s falls off as along·r·θ²/2): 1 on a flat face,
+    // 1 ± r/R on a ball or bowl of radius R, near 0 in the burr's own round
+    // pit and across the crease of a hole's wall and bottom, where the fit
+    // strayed 9–23° from the maximiser and the proxy jumped (0.19 N in one
+    // frame of the §8.2 lean). The sampled sharpness is noisy (0.4–0.8 in a
+    // bowl whose true one is 0.75; up to 0.5 in the §8.2 lean's pit, where
+    // fading in from 0.35 let the proxy slip 0.06–0.25 N), so the step fades
+    // in from 0.5 to 0.7 and the normal turns continuously.
     const double a = 2.0 * p[3], b = p[4], d = 2.0 * p[5], det = a * d - b * b;
     const double flattest = 0.5 * (a + d) + std::sqrt(0.25 * (a - d) * (a - d) + b * b);  // the larger eigenvalue
     const double sharpness = -flattest / (along * radius_);

@@ -64,9 +64,11 @@ private:
 // much as the trilinear samples of a curved surface are off, so the argmax of
 // the voxelised field lands 4° (RMS; up to 10°) off a ball's normal.
 // contactNormal() fits a paraboloid to s over two rings 0.2 and 0.4 rad
-// around the maximiser (17 samples, twice) and takes its peak: 1.1° RMS on
-// the ball, 1.5° in a bowl (docs/algorithms.md, Algorithm #1), where a clear
-// peak; elsewhere (the burr's own pit, a crease) it fades back to the maximiser.
+// around the maximiser (17 samples, twice) and takes its peak where that is a
+// clear one: 1.3° RMS on a ball against the maximiser's 4.9° (docs/
+// algorithms.md, Algorithm #1). Elsewhere — the burr's own pit, a crease, and
+// often a bowl, whose sampled peak looks flatter than it is — it fades back
+// to the maximiser.
 class BurrField final : public ProxyField {
 public:
   explicit BurrField(double radius) : radius_(radius) {}
