@@ -203,10 +203,11 @@ private:
     PointContact contacts[kMaxPointContacts];
     Track found[kMaxPointContacts];
     int n = 0;
+    bool seedBurr = false;  // the round burr outside material looks for new faces
     auto add = [&](const Track& t, const PointContact& pc) {
       // A contact within a voxel of touching stays tracked (the same contact
       // when it touches again, entering at depth 0).
-      if (pc.depth <= -h || n == kMaxPointContacts) return false;
+      if (pc.depth <= -h) return false;
       // The same contact found again, or another line into the same face: a
       // burr in its own round pit is about as deep along many lines, and
       // contacts that came and went among them would shake the hand. The
@@ -217,7 +218,21 @@ private:
             (t.shaft ? glm::dot(contacts[j].normal, pc.normal) > 0.866 && glm::length(contacts[j].point - pc.point) < 4.0 * h
                      : glm::dot(contacts[j].normal, pc.normal) > 0.5))
           return false;
-      found[n] = t, contacts[n++] = pc;
+      int slot = n;
+      if (n == kMaxPointContacts) {
+        // Full: the new contact takes the place of the one that pushes least
+        // (never the first), if it would push more. Faces of the burr's own
+        // pit that only came near filled all six places in the §8.2 replay
+        // while the shaft leaned into the rim, and the shaft's contact came
+        // in 73 µm deep (0.17 N in one frame) when one of them left.
+        slot = leastPushing(found, contacts, n);
+        if (slot < 0 ||
+            !(weightedDepth(found, contacts, n, t, pc) > weightedDepth(found, contacts, n, found[slot], contacts[slot])))
+          return false;
+      } else {
+        ++n;
+      }
+      found[slot] = t, contacts[slot] = pc;
       return true;
     };
     auto shaft = [&](Track t) {
@@ -294,16 +309,21 @@ private:
           Track face = tracked(track_[j]);
           add(face, burrContact(scene, c, face));
         }
-      seed(scene, c, R, contacts, n, false, [&](std::size_t i) {
+      seedBurr = true;
+    }
+    // Every tracked contact before any new one: a new face of the burr's
+    // took the last place from the leaning shaft's contact, 67 µm deep, in
+    // the §8.2 replay (0.17 N in one frame).
+    for (int j = 0; j < tracked_; ++j)
+      if (track_[j].shaft) shaft(track_[j]);
+    if (seedBurr)
+      seed(scene, c, R, found, contacts, n, false, [&](std::size_t i) {
         Track face;
         face.u = R * sphere_[i] / r_, face.t = r_;
         const PointContact pc = burrContact(scene, c, face);
         return add(face, pc);
       });
-    }
-    for (int j = 0; j < tracked_; ++j)
-      if (track_[j].shaft) shaft(track_[j]);
-    seed(scene, c, R, contacts, n, true, [&](std::size_t i) {
+    seed(scene, c, R, found, contacts, n, true, [&](std::size_t i) {
       Track t;
       t.shaft = true, t.y = sliceY_[i / ring_.size()];
       const glm::dvec3& v = ring_[i % ring_.size()];
@@ -346,6 +366,35 @@ private:
     std::copy(found, found + n, track_);
   }
 
+  // How deep a contact pushes: its depth, a burr's second face weighted
+  // from 0 at 60° from the burr's first contact to whole at 90° (as the
+  // shares take it, stepDeepest); the depth (≤ 0) of one that does not
+  // touch, so that of two such the nearer ranks higher.
+  static double weightedDepth(const Track* found, const PointContact* contacts, int n, const Track& t,
+                              const PointContact& pc) {
+    if (!(pc.depth > 0.0)) return pc.depth;
+    if (t.shaft) return pc.depth;
+    for (int j = 0; j < n; ++j)
+      if (!found[j].shaft) {
+        if (&contacts[j] == &pc) return pc.depth;  // the first
+        const double angle = std::acos(std::clamp(glm::dot(contacts[j].normal, pc.normal), -1.0, 1.0));
+        return pc.depth * std::clamp((angle - std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
+      }
+    return pc.depth;
+  }
+  // The contact that pushes least when all places are taken, never the
+  // burr's first (the one its second faces are weighed against).
+  static int leastPushing(const Track* found, const PointContact* contacts, int n) {
+    int first = -1, slot = -1;
+    for (int j = 0; j < n && first < 0; ++j)
+      if (!found[j].shaft) first = j;
+    for (int j = 0; j < n; ++j)
+      if (j != first && (slot < 0 || weightedDepth(found, contacts, n, found[j], contacts[j]) <
+                                         weightedDepth(found, contacts, n, found[slot], contacts[slot])))
+        slot = j;
+    return slot;
+  }
+
   // The burr's contact near t.u (updates t). Its point is on the line
   // through the centre along the normal: a sphere's contact force passes
   // through its centre, so the burr alone gives no torque.
@@ -376,10 +425,12 @@ private:
   // plane, give or take the growth and half its depth: a concave surface
   // curls up past the plane; for the burr, within 60° of a contact's
   // normal), starts a contact from the unexplained point nearest their
-  // centroid.
+  // centroid. The burr's points are explained by the burr's contacts only
+  // (the shaft's are found first, and by their planes the hole's 30° poses
+  // lost the burr's wall).
   template <class Start>
-  void seed(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, const PointContact* contacts, int& n,
-            bool onShaft, const Start& start) {
+  void seed(const HapticScene& scene, const glm::dvec3& c, const glm::dmat3& R, const Track* found,
+            const PointContact* contacts, int& n, bool onShaft, const Start& start) {
     const std::size_t count = onShaft ? sliceY_.size() * ring_.size() : sphere_.size();
     const double grow = onShaft ? shaftGrow_ : sphereGrow_, h = scene.voxelSize();
     auto point = [&](std::size_t i) {
@@ -396,16 +447,18 @@ private:
       const bool near = scene.mayHaveMaterialNear(centre, onShaft ? rho_ + grow : r_ + grow);
       for (std::size_t i = g; i < g + group; ++i) inside[i] = near && scene.inside(point(i));
     }
-    for (int attempt = 0; attempt < 3 && n < kMaxPointContacts; ++attempt) {
+    for (int attempt = 0; attempt < 3; ++attempt) {
       glm::dvec3 sum(0.0);
       int left = 0;
       for (std::size_t i = 0; i < count; ++i) {
         if (!inside[i]) continue;
         const glm::dvec3 p = point(i);
-        for (int j = 0; j < n && inside[i]; ++j)
+        for (int j = 0; j < n && inside[i]; ++j) {
+          if (!onShaft && found[j].shaft) continue;  // the burr's points by the burr's contacts only
           if (glm::dot(p - contacts[j].point, contacts[j].normal) < grow + 0.5 * contacts[j].depth + h ||
               (!onShaft && glm::dot(glm::normalize(p - c), contacts[j].normal) < -0.5))
             inside[i] = 0;
+        }
         if (inside[i]) sum += p, ++left;
       }
       if (left == 0) return;
