@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,15 @@ namespace millsim {
 
 namespace {
 
+// How far the burr's proxy may slide in a frame beyond the hand's own motion
+// (ProxyPoint::Params::maxSlipVoxels): a fifth of a voxel, 0.04 N a frame at
+// the default stiffness and 0.1 mm voxels. Unlimited, a proxy held by refused
+// slides slipped up to 0.2 mm at once (0.21 N) in 25 of 33 §8.2 replays at
+// 984–1016 Hz while milling and in 18 while leaning; limited so, in none
+// while milling and in 1 each leaning and holding (0.12 N); a quarter voxel
+// let 0.058 N steps through in the lean (docs/algorithms.md, #1).
+constexpr double kBurrSlipVoxels = 0.2;
+
 class LineProxyAlgorithm final : public HapticAlgorithm {
 public:
   struct Params {
@@ -36,7 +46,8 @@ public:
 
   LineProxyAlgorithm(const Params& p, int proxyIterations)
       : p_(p),
-        tip_(ProxyPoint::Params{proxyIterations, 2.0, p.burrSurface, p.burrSurface, p.burrSurface, p.burrSurface}),
+        tip_(ProxyPoint::Params{proxyIterations, 2.0, p.burrSurface, p.burrSurface, p.burrSurface, p.burrSurface,
+                                p.burrSurface ? kBurrSlipVoxels : std::numeric_limits<double>::infinity()}),
         shaft_(ProxyPoint::Params{proxyIterations, 2.0}),
         burr_(p.tool.tipRadius),
         before_(std::size_t(p.vertices)),

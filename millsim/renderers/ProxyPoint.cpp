@@ -163,6 +163,10 @@ const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3&
 const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& probe) {
   if (!isFinite(probe)) return proxy_;
   const double h = field.voxelSize();
+  // This update's slides may add up to the probe's own motion since the last
+  // one and maxSlipVoxels more (Params).
+  double slideLeft = glm::length(probe - lastProbe_) + params_.maxSlipVoxels * h;
+  lastProbe_ = probe;
   glm::dvec3 entry;
   if (!inContact_) {
     if (field.value(proxy_) > 0.0) {
@@ -211,8 +215,9 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     previousNormal = n;
     const double len = glm::length(move);
     if (len < 1e-3 * h) break;
-    const double maxStep = params_.maxSlideVoxels * h;
-    if (len > maxStep) move *= maxStep / len;
+    const double maxStep = params_.maxSlideVoxels * h, longest = std::min(maxStep, slideLeft);
+    if (!(longest > 1e-3 * h)) break;  // this update's slides are spent
+    if (len > longest) move *= longest / len;
     glm::dvec3 next = projectToSurface(field, proxy_ + move, maxStep);
     for (int k = 0; params_.refuseSinkingSlides && k < 4 && isFinite(next) && field.value(next) > 0.0 &&
                     field.outwardNormal(next) == glm::dvec3(0.0);
@@ -236,6 +241,7 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
       }
       if (!isFinite(next) || !(glm::length(probe - next) < before - gain)) break;  // no nearer point: stay
     }
+    slideLeft -= glm::length(move);
     proxy_ = next;
   }
   // Milling may have removed the material under the proxy: follow the

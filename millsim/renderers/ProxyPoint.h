@@ -18,6 +18,8 @@
 // point, and the paper's burr-centre vertex) or BurrField, s dilated by the
 // burr sphere (the burr's centre held so that its *surface* stays out of
 // material: docs/algorithms.md, Algorithm #1).
+#include <limits>
+
 #include <glm/vec3.hpp>
 
 namespace millsim {
@@ -125,12 +127,17 @@ public:
     // against a wall — slides projected onto alternate walls otherwise hopped
     // 0.1–0.2 mm a frame with the probe still (the burr's proxy).
     bool descentOnly = false;
+    // How far (voxels) the proxy may slide in one update beyond how far the
+    // probe moved since the last: a proxy held by refused slides while the
+    // probe drifts (the burr in its own pit, leaning) otherwise slipped the
+    // whole way at once, up to 0.2 mm (0.2 N) in a frame.
+    double maxSlipVoxels = std::numeric_limits<double>::infinity();
   };
   ProxyPoint() = default;
   explicit ProxyPoint(Params p) : params_(p) {}
 
   void reset(const glm::dvec3& at) {
-    proxy_ = at;
+    proxy_ = lastProbe_ = at;
     inContact_ = false;
   }
   // Puts the proxy on the surface at a known contact point (Algorithm #1's
@@ -146,6 +153,7 @@ public:
   // Where `other` is and whether it touches, keeping this one's parameters (a live retune).
   void takeStateFrom(const ProxyPoint& other) {
     proxy_ = other.proxy_;
+    lastProbe_ = other.lastProbe_;
     inContact_ = other.inContact_;
   }
   const glm::dvec3& position() const { return proxy_; }
@@ -159,6 +167,7 @@ private:
 
   Params params_;
   glm::dvec3 proxy_{0.0};
+  glm::dvec3 lastProbe_{0.0};  // the probe of the last update (for maxSlipVoxels)
   bool inContact_ = false;
 };
 
