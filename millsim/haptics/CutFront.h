@@ -21,7 +21,7 @@ struct FeedLaw {
 
 class CutFront {
 public:
-  void reset(const glm::dvec3& at) { centre_ = at; }
+  void reset(const glm::dvec3& at) { centre_ = at, touching_ = false; }
   const glm::dvec3& centre() const { return centre_; }
   // The hardness the last step met (1 when it did not cut).
   double hardness() const { return hardness_; }
@@ -34,6 +34,7 @@ public:
 private:
   glm::dvec3 centre_{0.0};
   double hardness_ = 1.0;
+  bool touching_ = false;  // the last step's
 };
 
 }  // namespace millsim

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "measure/Renderers.h"
+#include "millsim/haptics/CutFront.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/lesson/ForbiddenRegion.h"
 #include "millsim/lesson/MillingTarget.h"
@@ -245,4 +246,27 @@ TEST(Regions, GoingOnIntoThePulpReportsWhenItWasFirstCut) {
   // before it, something was 3 ms after (recounted, not by the accounting).
   EXPECT_EQ(pulpRemovedRecount(*millDown(0.0035, 3.0, pulp.firstViolation - 0.003).scene), 0.0);
   EXPECT_GT(pulpRemovedRecount(*millDown(0.0035, 3.0, pulp.firstViolation + 0.003).scene), 0.0);
+}
+
+// The cut front (#2's and #3's): a burr in contact, milling, cuts at a front
+// that advances towards the hand at the feed speed. A single frame without
+// contact keeps the front where it was: #3's coupled tool lost all its
+// contacts for one frame after a stamp in the §8.2 replay and stepped a
+// penalty depth further in, and a front that jumped there cut 0.035 mm³ at
+// once. Out of contact for a second frame the front is the burr again.
+TEST(CutFront, OneFrameWithoutContactDoesNotMoveTheFront) {
+  VoxelVolume volume = slab();
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), kIso);
+  const FeedLaw law{200.0, kTool.tipRadius};
+  CutFront front;
+  const glm::dvec3 burr(0.0, 0.4e-3, 0.0), hand(0.0, -0.5e-3, 0.0), deeper(0.0, 0.1e-3, 0.0);
+  front.reset(burr);
+  front.step(scene, law, burr, hand, true, true, 1.0, 1e-3);  // 1 N at hardness 1: 5 µm a frame
+  const glm::dvec3 fed = front.centre();
+  EXPECT_NEAR(fed.y, burr.y - 5e-6, 1e-9);
+  front.step(scene, law, deeper, hand, false, true, 1.0, 1e-3);
+  EXPECT_EQ(front.centre(), fed) << "one frame out of contact moved the front to the burr";
+  front.step(scene, law, deeper, hand, false, true, 1.0, 1e-3);
+  EXPECT_EQ(front.centre(), deeper) << "out of contact for two frames the front is the burr";
 }
