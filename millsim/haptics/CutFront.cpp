@@ -22,8 +22,7 @@ const glm::dvec3& CutFront::step(const HapticScene& scene, const FeedLaw& law, c
     centre_ = burr;
     return centre_;
   }
-  if (!touching) return centre_;
-  if (!milling) return centre_;
+  if (!touching || !milling) return centre_;
   const glm::dvec3 toTarget = target - centre_;
   const double gap = glm::length(toTarget);
   if (!(gap > 0.0)) return centre_;

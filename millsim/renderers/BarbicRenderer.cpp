@@ -21,6 +21,9 @@ namespace millsim {
 
 namespace {
 
+// How far (voxels) the tool moves in the step that loses all its contacts (below).
+constexpr double kLostContactStepVoxels = 0.1;
+
 struct BarbicParams {
   int scale;
   double contactK, feedResistance, maxStep;
@@ -46,7 +49,7 @@ public:
     tool_ = isFinite(device) ? device : Pose{};
     lastDevice_ = tool_;
     toolVelocity_.setZero();
-    lastContacts_ = 0;
+    touched_ = false;
     cut_.reset(device.position);
   }
 
@@ -84,9 +87,9 @@ public:
     // 0.23 N). A tenth of a voxel: 0.038 N, the same removed volume.
     const double sweep = step.head<3>().norm() + step.tail<3>().norm() * reach_;
     const double limit =
-        out.contacts == 0 && lastContacts_ > 0 ? std::min(p_.maxStep, 0.1 * scene.voxelSize()) : p_.maxStep;
+        out.contacts == 0 && touched_ ? std::min(p_.maxStep, kLostContactStepVoxels * scene.voxelSize()) : p_.maxStep;
     if (sweep > limit && materialWithin(sweep)) step *= limit / sweep;
-    lastContacts_ = out.contacts;
+    touched_ = out.contacts > 0;
     tool_ = applyStep(tool_, step);
     Vec6 toolVelocity = step / dt;
     if (!isFinite(tool_)) tool_ = device, toolVelocity.setZero();
@@ -239,7 +242,7 @@ private:
   std::vector<Shells> shells_;
   Wrench6 acc_;
   Pose tool_, lastDevice_;
-  int lastContacts_ = 0;  // the last step's (a step that loses them all is held short)
+  bool touched_ = false;  // the last step had contacts (a step that loses them all is held short)
   Vec6 toolVelocity_ = Vec6::Zero();
   CutFront cut_;  // where the burr cuts
 };

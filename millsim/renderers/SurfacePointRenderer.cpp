@@ -225,10 +225,10 @@ private:
         // pit that only came near filled all six places in the §8.2 replay
         // while the shaft leaned into the rim, and the shaft's contact came
         // in 73 µm deep (0.17 N in one frame) when one of them left.
+        const int first = firstBurr(found, n);
+        const PointContact* firstContact = first >= 0 && !t.shaft ? &contacts[first] : nullptr;
         slot = leastPushing(found, contacts, n);
-        if (slot < 0 ||
-            !(weightedDepth(found, contacts, n, t, pc) > weightedDepth(found, contacts, n, found[slot], contacts[slot])))
-          return false;
+        if (slot < 0 || !(pushDepth(pc, firstContact) > pushDepth(found, contacts, n, slot))) return false;
       } else {
         ++n;
       }
@@ -348,13 +348,7 @@ private:
       normals[j] = contacts[j].normal, depths[j] = contacts[j].depth;
       if (!(contacts[j].depth > 0.0)) continue;  // near, not touching
       ++out.contacts;
-      if (!found[j].shaft && !first) {
-        // A second face of the burr's is a face only more than 60° from the
-        // first (closer, it is the same face), so it enters weighted from 0
-        // at 60° to whole at 90°: not at once as it turns past 60°.
-        depths[j] *= std::clamp((std::acos(std::clamp(glm::dot(burr->normal, contacts[j].normal), -1.0, 1.0)) -
-                                 std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
-      }
+      if (!found[j].shaft && !first) depths[j] *= secondFaceWeight(*burr, contacts[j]);
     }
     contactShares(normals, depths, n, shares);
     for (int j = 0; j < n; ++j) {
@@ -366,32 +360,38 @@ private:
     std::copy(found, found + n, track_);
   }
 
-  // How deep a contact pushes: its depth, a burr's second face weighted
-  // from 0 at 60° from the burr's first contact to whole at 90° (as the
-  // shares take it, stepDeepest); the depth (≤ 0) of one that does not
-  // touch, so that of two such the nearer ranks higher.
-  static double weightedDepth(const Track* found, const PointContact* contacts, int n, const Track& t,
-                              const PointContact& pc) {
-    if (!(pc.depth > 0.0)) return pc.depth;
-    if (t.shaft) return pc.depth;
+  // A second face of the burr's is a face only more than 60° from its first
+  // contact (closer, it is the same face), so it pushes weighted from 0 at
+  // 60° to whole at 90°: not at once as it turns past 60°.
+  static double secondFaceWeight(const PointContact& first, const PointContact& face) {
+    const double angle = std::acos(std::clamp(glm::dot(first.normal, face.normal), -1.0, 1.0));
+    return std::clamp((angle - std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
+  }
+  // The burr's first contact among the found ones (the first that is not the shaft's), −1 if none.
+  static int firstBurr(const Track* found, int n) {
     for (int j = 0; j < n; ++j)
-      if (!found[j].shaft) {
-        if (&contacts[j] == &pc) return pc.depth;  // the first
-        const double angle = std::acos(std::clamp(glm::dot(contacts[j].normal, pc.normal), -1.0, 1.0));
-        return pc.depth * std::clamp((angle - std::numbers::pi / 3.0) / (std::numbers::pi / 6.0), 0.0, 1.0);
-      }
-    return pc.depth;
+      if (!found[j].shaft) return j;
+    return -1;
+  }
+  // How deep a contact pushes: its depth, a burr's second face weighted
+  // against the burr's first contact (`first`; null for the first itself and
+  // the shaft's contacts); the depth (≤ 0) of one that does not touch, so
+  // that of two such the nearer ranks higher.
+  static double pushDepth(const PointContact& pc, const PointContact* first) {
+    return pc.depth > 0.0 && first ? pc.depth * secondFaceWeight(*first, pc) : pc.depth;
+  }
+  // The same for the found contact in `slot`.
+  static double pushDepth(const Track* found, const PointContact* contacts, int n, int slot) {
+    const int first = firstBurr(found, n);
+    return pushDepth(contacts[slot], found[slot].shaft || slot == first || first < 0 ? nullptr : &contacts[first]);
   }
   // The contact that pushes least when all places are taken, never the
   // burr's first (the one its second faces are weighed against).
   static int leastPushing(const Track* found, const PointContact* contacts, int n) {
-    int first = -1, slot = -1;
-    for (int j = 0; j < n && first < 0; ++j)
-      if (!found[j].shaft) first = j;
+    const int first = firstBurr(found, n);
+    int slot = -1;
     for (int j = 0; j < n; ++j)
-      if (j != first && (slot < 0 || weightedDepth(found, contacts, n, found[j], contacts[j]) <
-                                         weightedDepth(found, contacts, n, found[slot], contacts[slot])))
-        slot = j;
+      if (j != first && (slot < 0 || pushDepth(found, contacts, n, j) < pushDepth(found, contacts, n, slot))) slot = j;
     return slot;
   }
 
