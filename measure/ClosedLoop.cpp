@@ -55,8 +55,14 @@ Trace runClosedLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorith
   trace.dt = 1.0 / run.rate;
   const long frames = long(std::lround(run.seconds * run.rate));
   trace.frames.reserve(std::size_t(frames));
+  std::vector<long> stallFrames;
+  for (const HandRun::Stall& st : run.stalls) stallFrames.push_back(std::lround(st.at * run.rate));
   for (long n = 0; n < frames; ++n) {
-    loop.stepSimulated();
+    const auto stall = std::find(stallFrames.begin(), stallFrames.end(), n);
+    if (stall == stallFrames.end())
+      loop.stepSimulated();
+    else
+      loop.stepSimulatedAfter(run.stalls[std::size_t(stall - stallFrames.begin())].length);
     loop.records().drain([&](const FrameRecord& r) {
       trace.frames.push_back(TraceFrame{r.t, truePose, r.force, r.torque, r.out, 0.0});
     });

@@ -3,9 +3,10 @@
 // (HandDevice's driver) run through HapticLoop::stepSimulated at 1 kHz, so the
 // safety layer, the zero-order hold and the one-frame delay are the real ones.
 // Optionally drops a fraction of device samples (the loop then holds the last
-// pose, as with a real device that misses a frame).
+// pose, as with a real device that misses a frame) and stalls the loop.
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "millsim/devices/HandDevice.h"
@@ -15,12 +16,19 @@
 namespace millsim::measure {
 
 struct HandRun {
+  HandRun(Trajectory ref, const HandModel& grip) : reference(std::move(ref)), hand(grip) {}
   Trajectory reference;
   HandModel hand;
   double seconds = 2.0;
   double rate = 1000.0;
   double dropFraction = 0.0;  // device samples marked invalid, at random
   std::uint64_t seed = 1;
+  // The loop stalls (host preemption): frame round(at·rate) comes `length`
+  // seconds after the one before it instead of one period.
+  struct Stall {
+    double at = 0.0, length = 0.0;  // s
+  };
+  std::vector<Stall> stalls;
 };
 
 struct TraceFrame {

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <map>
 
+#include <glm/geometric.hpp>
+
 #include "measure/AnalyticScene.h"
 
 namespace millsim::measure {
@@ -171,6 +173,38 @@ ScenarioResult runScenario(const RendererSpec& spec, const Scenario& sc, const H
   if (sc.kind == ScenarioKind::Release && r.releaseAfter > limits.releaseDecay * r.releaseBefore && r.releaseAfter > 1e-6)
     fail(format("release: speed envelope %.3g m/s then %.3g m/s (needs a 90%% decay)", r.releaseBefore,
                 r.releaseAfter));
+  return r;
+}
+
+StallResult runStall(const RendererSpec& spec, double stall) {
+  auto node = makeRenderer(spec);
+  const double yc = offsetFor(spec, *node);
+  AnalyticScene& scene = slideScene();
+  constexpr double kStallAt = 1.5, kAfter = 0.5;
+  HandRun run{Trajectory({at(0, 0, yc + 2e-3), at(0.3, 0, yc + 2e-3), at(0.6, 0, yc - 1e-3), at(5.0, 0, yc - 1e-3)}),
+              HandModel{}};
+  run.seconds = kStallAt + kAfter;
+  run.stalls = {{kStallAt, stall}};
+  const Trace trace = runClosedLoop(*scene.scene, node->compile(standardTool(), *scene.scene), run);
+
+  StallResult r;
+  const auto stallFrame = std::size_t(std::lround(kStallAt * run.rate));
+  const std::size_t before = std::size_t(0.1 * run.rate);
+  double height = 0.0;
+  for (std::size_t i = stallFrame - before; i < stallFrame; ++i) {
+    r.heldForce += glm::length(trace.frames[i].force) / double(before);
+    height += trace.frames[i].device.position.y / double(before);
+  }
+  const double resumed = trace.frames[stallFrame].t;
+  r.recovery = -1.0;
+  for (std::size_t i = stallFrame; i < trace.frames.size(); ++i) {
+    const TraceFrame& f = trace.frames[i];
+    const double force = glm::length(f.force);
+    r.peakForce = std::max(r.peakForce, force);
+    r.sink = std::max(r.sink, height - f.device.position.y);
+    if (r.recovery < 0.0 && force >= 0.9 * r.heldForce) r.recovery = f.t - resumed;
+  }
+  if (r.recovery < 0.0) r.recovery = kAfter;
   return r;
 }
 

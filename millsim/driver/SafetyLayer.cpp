@@ -38,6 +38,7 @@ SafetyLayer::SafetyLayer(const SafetyLimits& limits) : limits_(limits) {
   requirePositive(limits.torqueLimit, "torqueLimit", false);
   requirePositive(limits.softStartTime, "softStartTime", true);
   requirePositive(limits.watchdogTimeout, "watchdogTimeout", false);
+  requirePositive(limits.stallRamp, "stallRamp", true);
 }
 
 void SafetyLayer::setLimits(double forceLimit, double torqueLimit) {
@@ -45,49 +46,87 @@ void SafetyLayer::setLimits(double forceLimit, double torqueLimit) {
   if (std::isfinite(torqueLimit) && torqueLimit > 0.0) limits_.torqueLimit = torqueLimit;
 }
 
-SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque, double t, double sampleTime) {
+SafeWrench SafetyLayer::trip(double t, std::uint32_t event, bool full) {
+  if (!tripped_) {
+    tripped_ = true;
+    interruptedRamp_ = lastOutput_ - rampStart_ < rampLength_;
+  }
+  fullRamp_ = fullRamp_ || full;
+  rampStart_ = t;
+  blendLength_ = 0.0;
+  sentForce_ = sentTorque_ = glm::dvec3(0.0);
   SafeWrench out;
+  out.events = event;
+  return out;
+}
+
+SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque, double t, double sampleTime) {
   // A non-finite clock is a late frame that must not become the reference for
   // the next watchdog check or ramp (NaN comparisons are all false: a NaN
-  // rampStart_ would skip the soft start).
+  // rampStart_ would skip the soft start). Its outage cannot be measured, so
+  // the whole soft start follows.
   if (!std::isfinite(t) || !std::isfinite(sampleTime)) {
     ++counters_.watchdogTrips;
-    out.events |= kSafetyWatchdog;
-    if (std::isfinite(t)) {
-      previousFrame_ = t;
-      rampStart_ = t;
-      started_ = true;
-    } else {
+    if (!std::isfinite(t)) {
       started_ = false;  // the next finite frame restarts the ramp from itself
+      sentForce_ = sentTorque_ = glm::dvec3(0.0);
+      SafeWrench out;
+      out.events = kSafetyWatchdog;
+      return out;
     }
-    return out;
+    started_ = true;
+    previousFrame_ = t;
+    return trip(t, kSafetyWatchdog, true);
   }
   if (!started_) {
     started_ = true;
-    rampStart_ = t;
-    previousFrame_ = t;
+    rampStart_ = lastOutput_ = previousFrame_ = t;
+    rampLength_ = limits_.softStartTime;
+    blendLength_ = 0.0;
+    tripped_ = fullRamp_ = false;
   }
-  const bool late = t - previousFrame_ > limits_.watchdogTimeout || t - sampleTime > limits_.watchdogTimeout;
+  const double gap = t - previousFrame_, timeout = limits_.watchdogTimeout;
   previousFrame_ = t;
-  if (late) {
+  const bool stale = t - sampleTime > timeout;
+  const bool stalled = gap > timeout;
+  const bool hiccup = stalled && !stale && !tripped_ && gap <= 2.0 * timeout;
+  if (stale || (stalled && !hiccup)) {
     ++counters_.watchdogTrips;
-    out.events |= kSafetyWatchdog;
-    rampStart_ = t;
-    return out;
+    return trip(t, kSafetyWatchdog, false);
   }
   if (!finite(force) || !finite(torque)) {
     ++counters_.nonFinite;
-    out.events |= kSafetyNonFinite;
-    rampStart_ = t;
-    return out;
+    return trip(t, kSafetyNonFinite, true);
   }
+  SafeWrench out;
+  if (hiccup) {
+    ++counters_.watchdogTrips;
+    out.events |= kSafetyWatchdog;
+    blendForce_ = sentForce_;
+    blendTorque_ = sentTorque_;
+    blendStart_ = t;
+    blendLength_ = limits_.stallRamp * gap;
+  }
+  if (tripped_) {
+    const double soft = limits_.softStartTime;
+    const double kept = interruptedRamp_ ? rampLength_ : 0.0;  // a trip never shortens a ramp under way
+    rampLength_ = fullRamp_ ? soft : std::min(soft, std::max(limits_.stallRamp * (t - lastOutput_), kept));
+    tripped_ = fullRamp_ = false;
+  }
+  lastOutput_ = t;
   double gain = 1.0;
-  if (limits_.softStartTime > 0.0 && t - rampStart_ < limits_.softStartTime) {
-    gain = std::clamp((t - rampStart_) / limits_.softStartTime, 0.0, 1.0);
+  if (t - rampStart_ < rampLength_) {
+    gain = std::clamp((t - rampStart_) / rampLength_, 0.0, 1.0);
     out.events |= kSafetyRamping;
   }
   out.force = force * gain;
   out.torque = torque * gain;
+  if (t - blendStart_ < blendLength_) {
+    const double b = std::clamp((t - blendStart_) / blendLength_, 0.0, 1.0);
+    out.force = blendForce_ + b * (out.force - blendForce_);
+    out.torque = blendTorque_ + b * (out.torque - blendTorque_);
+    out.events |= kSafetyRamping;
+  }
   // Two clamps, counted once per frame.
   const bool f = clampTo(out.force, limits_.forceLimit);
   const bool q = clampTo(out.torque, limits_.torqueLimit);
@@ -95,6 +134,8 @@ SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque
     ++counters_.clamped;
     out.events |= kSafetyClamped;
   }
+  sentForce_ = out.force;
+  sentTorque_ = out.torque;
   return out;
 }
 

@@ -1,13 +1,21 @@
 #pragma once
 // SafetyLayer: the last thing between a renderer's wrench and any device,
 // simulated or real. Every frame's output passes through filter():
-//  - NaN or Inf anywhere → zero output, and the soft start begins again;
-//  - a late frame (the loop or the device sample older than the watchdog
-//    timeout) → zero output, and the soft start begins again;
+//  - NaN or Inf anywhere → zero output, then the whole soft start;
+//  - a stale device sample (older than the watchdog timeout) or a loop stall
+//    longer than twice the timeout → zero output (where the device is, or
+//    what it did meanwhile, is unknown), then a ramp from zero lasting
+//    stallRamp times the outage, at most softStartTime;
+//  - a hiccup: a loop frame later than the timeout but within twice it, on a
+//    fresh sample. The device has held the last wrench meanwhile (ARES holds
+//    it for 10 ms), so the output blends from that wrench to the new one over
+//    stallRamp times the stall instead of dropping: a 6 ms preemption
+//    neither takes the wall away nor steps it;
 //  - soft start: the output is scaled by a ramp from 0 to 1 over
-//    softStartTime after the run starts and after every trip, so the hand
-//    never feels a step when forces resume;
+//    softStartTime after the run starts, so the hand never feels a step when
+//    forces begin;
 //  - the magnitudes are clamped to forceLimit and torqueLimit.
+// Each of the first three counts as a watchdog trip or a non-finite frame.
 // It runs on the haptic thread: no allocation, no locks.
 #include <cstdint>
 
@@ -19,7 +27,11 @@ struct SafetyLimits {
   double forceLimit = 10.0;       // N
   double torqueLimit = 0.5;       // N·m
   double softStartTime = 0.25;    // s; 0 = no ramp
-  double watchdogTimeout = 0.005; // s; frames or samples older than this zero the output
+  double watchdogTimeout = 0.005; // s; older samples and longer stalls trip the watchdog
+  // Seconds of ramp or blend per second of outage after a trip (the outage:
+  // time since the last frame with output). 4 makes the force's return a few
+  // times as gentle as its loss was short; the hand moved little meanwhile.
+  double stallRamp = 4.0;
 };
 
 // What the layer did to a frame, as bits (also written to the log's flags column).
@@ -59,11 +71,22 @@ public:
   void setLimits(double forceLimit, double torqueLimit);
 
 private:
+  // A frame without output; `full`: the next ramp is the whole soft start.
+  SafeWrench trip(double t, std::uint32_t event, bool full);
+
   SafetyLimits limits_;
   SafetyCounters counters_;
-  double rampStart_ = 0.0;     // time the current ramp began
+  double rampStart_ = 0.0;   // time the current ramp from zero began (the last frame without output)
+  double rampLength_ = 0.0;  // s; the current ramp's length
+  double lastOutput_ = 0.0;  // time of the last frame that had output
   double previousFrame_ = 0.0;
+  glm::dvec3 sentForce_{0.0}, sentTorque_{0.0};  // the last frame's output, which the device holds
+  glm::dvec3 blendForce_{0.0}, blendTorque_{0.0};  // a hiccup's blend starts from these
+  double blendStart_ = 0.0, blendLength_ = 0.0;    // s
   bool started_ = false;
+  bool tripped_ = false;          // frames without output since lastOutput_
+  bool fullRamp_ = false;         // ... one of them asks for the whole soft start
+  bool interruptedRamp_ = false;  // ... and they cut a ramp short
 };
 
 }  // namespace millsim

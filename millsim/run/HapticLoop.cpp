@@ -250,6 +250,15 @@ void HapticLoop::stepSimulated() {
   stats_.elapsed = t;
 }
 
+void HapticLoop::stepSimulatedAfter(double period) {
+  if (!(period > 0.0) || !std::isfinite(period))
+    throw std::invalid_argument("HapticLoop::stepSimulatedAfter: the period must be a positive number of seconds");
+  if (nextFrame_ > 0) stalled_ += period - 1.0 / settings_.rate;
+  const double t = frameTime(nextFrame_);
+  frame(t, frameDt(period * 1e6), period * 1e6);
+  stats_.elapsed = t;
+}
+
 void HapticLoop::start(double duration) {
   if (thread_.joinable()) throw std::logic_error("HapticLoop::start: already running");
   finished_.store(false, std::memory_order_release);

@@ -1,5 +1,5 @@
-// SafetyLayer: clamp, soft-start ramp, NaN/Inf zeroing, watchdog and ramp
-// restart, invalid limits. Times are synthetic: no clocks, no timing asserts.
+// SafetyLayer: clamp, soft-start ramp, NaN/Inf zeroing, watchdog, hiccup
+// blend and ramp restart, invalid limits. Times are synthetic: no clocks, no timing asserts.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -139,6 +139,78 @@ TEST(SafetyLayer, LateFrameTripsTheWatchdogAndRestartsTheRamp) {
   EXPECT_FALSE(w.events & kSafetyRamping);
 }
 
+// A preemption between 5 and 10 ms: the device held the last wrench, so the
+// output blends from it to the new one over four times the stall.
+TEST(SafetyLayer, AHiccupBlendsFromTheHeldWrenchInsteadOfDropping) {
+  SafetyLayer s(noRamp());
+  double t = 0.0;
+  for (int i = 0; i < 20; ++i, t += kDt) s.filter({0, 0, 2.0}, {0.1, 0, 0}, t, t);
+  t += 0.006 - kDt;  // 6 ms after the last frame
+  SafeWrench w = s.filter({0, 0, 3.0}, {0.2, 0, 0}, t, t);
+  EXPECT_EQ(w.force, glm::dvec3(0, 0, 2.0)) << "the late frame sends what the device held";
+  EXPECT_EQ(w.torque, glm::dvec3(0.1, 0, 0));
+  EXPECT_TRUE(w.events & kSafetyWatchdog);
+  EXPECT_EQ(s.counters().watchdogTrips, 1u);
+  for (int i = 1; i <= 30; ++i) {
+    t += kDt;
+    w = s.filter({0, 0, 3.0}, {0.2, 0, 0}, t, t);
+    const double b = std::min(1.0, i * kDt / 0.024);
+    EXPECT_NEAR(w.force.z, 2.0 + b, 1e-9) << "frame " << i;
+    EXPECT_NEAR(w.torque.x, 0.1 + 0.1 * b, 1e-9) << "frame " << i;
+    if (i != 24) {
+      EXPECT_EQ(bool(w.events & kSafetyRamping), i < 24) << "frame " << i;
+    }
+  }
+  EXPECT_EQ(s.counters().watchdogTrips, 1u);
+}
+
+// Longer than twice the timeout: the device may have dropped the wrench (ARES
+// does after 10 ms), so the output restarts from zero, over four times the
+// outage, and never over more than the soft start.
+TEST(SafetyLayer, AStallZeroesTheOutputAndRampsOverFourTimesTheOutage) {
+  for (const double stall : {0.020, 0.100}) {
+    SafetyLimits l = noRamp();
+    l.softStartTime = 0.25;
+    SafetyLayer s(l);
+    double t = 0.0;
+    for (int i = 0; i < 300; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);  // the soft start is over
+    t += stall - kDt;
+    const double lastOutput = t - stall;
+    SafeWrench w = s.filter({0, 0, 2.0}, {}, t, t);
+    EXPECT_EQ(w.force, glm::dvec3(0.0));
+    EXPECT_TRUE(w.events & kSafetyWatchdog);
+    const double tripped = t;
+    const double ramp = std::min(0.25, 4.0 * (t + kDt - lastOutput));
+    for (int i = 1; i <= 300; ++i) {
+      t += kDt;
+      w = s.filter({0, 0, 2.0}, {}, t, t);
+      EXPECT_NEAR(w.force.z, 2.0 * std::min(1.0, (t - tripped) / ramp), 1e-9) << stall << " s stall, frame " << i;
+    }
+  }
+}
+
+// The soft start protects a run that starts inside material: a hiccup or a
+// stall during it must not end it early.
+TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.25;
+  SafetyLayer s(l);
+  double t = 0.0;
+  for (int i = 0; i < 50; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);
+  t += 0.020 - kDt;
+  EXPECT_EQ(s.filter({0, 0, 2.0}, {}, t, t).force, glm::dvec3(0.0));
+  const double tripped = t;
+  t += kDt;
+  EXPECT_NEAR(s.filter({0, 0, 2.0}, {}, t, t).force.z, 2.0 * kDt / 0.25, 1e-9) << "a ramp of 84 ms, not 250";
+  // A hiccup during the new ramp blends from what was sent towards the ramped
+  // wrench: still below the ramp's line, never a step.
+  t += 0.007;
+  const double sent = 2.0 * (t - 0.007 - tripped) / 0.25;
+  const SafeWrench w = s.filter({0, 0, 2.0}, {}, t, t);
+  EXPECT_NEAR(w.force.z, sent, 1e-9);
+  EXPECT_TRUE(w.events & kSafetyWatchdog);
+}
+
 TEST(SafetyLayer, StaleDeviceSampleTripsTheWatchdog) {
   SafetyLayer s(noRamp());
   double t = 0.0;
@@ -196,6 +268,9 @@ TEST(SafetyLayer, RejectsInvalidLimitsNamingTheValue) {
     SafetyLimits l = noRamp();
     l.softStartTime = bad;
     expectThrow(l, "softStartTime");
+    l = noRamp();
+    l.stallRamp = bad;
+    expectThrow(l, "stallRamp");
   }
   SafetyLimits ok = noRamp();
   ok.softStartTime = 0.0;

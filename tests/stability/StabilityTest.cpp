@@ -177,6 +177,22 @@ TEST(ZWidth, DetectsTheRingingBeyondColgatesBound) {
   EXPECT_NE(r.points[0].failure.find("limit cycle"), std::string::npos) << r.points[0].failure;
 }
 
+// ---- a late frame --------------------------------------------------------------
+
+// One 6 ms preemption of the haptic thread while the hand presses the tool on
+// a surface trips the safety layer's watchdog. The wall must come back within
+// a few times the outage: if it stays away for the whole soft start (0.25 s)
+// the hand, still pushing, falls in and the returning force kicks it out.
+TEST_P(Stability, AHiccupWhilePressingDoesNotTakeTheWallAway) {
+  const StallResult r = runStall({GetParam(), {}}, 0.006);
+  std::cout << GetParam() << " | 6 ms stall | held " << r.heldForce << " N | back to 90 % after " << r.recovery * 1e3
+            << " ms | peak " << r.peakForce << " N | sank " << r.sink * 1e6 << " um\n";
+  ASSERT_GT(r.heldForce, 0.2) << "the hand must press the surface before the stall";
+  EXPECT_LE(r.recovery, 0.04) << "the force stayed away after a 6 ms stall";
+  EXPECT_LE(r.peakForce, 1.25 * r.heldForce) << "the force kicked back after a 6 ms stall";
+  EXPECT_LE(r.sink, 50e-6) << "the hand fell into the surface during a 6 ms stall";
+}
+
 // ---- fall-through -------------------------------------------------------------
 
 TEST_P(Stability, ThinPlatesAtUpToOneMetrePerSecond) {
