@@ -132,6 +132,9 @@ private:
     for (std::size_t i = 0; i < shells_.size(); ++i) {
       shells_[i].placement = &scene.placement(i);
       shells_[i].fine = &scene.pointShell(i, p_.scale);
+      // A shell's bucket grid is fixed: reserved on the first call (the
+      // constructor, on the scene thread), never grown in step().
+      if (candidates_.capacity() < shells_[i].fine->bucketCount()) candidates_.reserve(shells_[i].fine->bucketCount());
     }
   }
 
@@ -140,11 +143,9 @@ private:
     const glm::dmat3 R = glm::mat3_cast(tool.orientation);
     const glm::dvec3 lo = sdf_.boxLo() - margin, hi = sdf_.boxHi() + margin;
     const glm::dmat3 lin(v.worldToLocal);
-    Obb b;
-    b.centre = glm::dvec3(v.worldToLocal * glm::dvec4(tool.position + R * ((lo + hi) * 0.5), 1.0));
-    for (int i = 0; i < 3; ++i) b.axis[i] = glm::normalize(lin * R[i]);
-    b.half = (hi - lo) * 0.5 / v.worldPerLocal;
-    return b;
+    const glm::dvec3 axes[3] = {glm::normalize(lin * R[0]), glm::normalize(lin * R[1]), glm::normalize(lin * R[2])};
+    return Obb(glm::dvec3(v.worldToLocal * glm::dvec4(tool.position + R * ((lo + hi) * 0.5), 1.0)), axes,
+               (hi - lo) * 0.5 / v.worldPerLocal);
   }
 
   // Penalty contacts of every shell point inside the tool, into acc_. Uses
@@ -162,7 +163,9 @@ private:
       const glm::dvec3 toToolOrigin = Rt * (glm::dvec3(v.localToWorld[3]) - tool_.position);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
       const PointShell* shell = s.fine;
-      if (p_.culling && shell->countCandidates(overlaps) > p_.maxTested) shell = coarse(), flags |= kFlagCoarseFallback;
+      // The fine shell's candidates, listed once for the budget and the visit.
+      if (p_.culling && shell->collectCandidates(overlaps, candidates_) > p_.maxTested)
+        shell = coarse(), flags |= kFlagCoarseFallback;
       for (int attempt = 0; attempt < 2; ++attempt) {
         const double k = p_.contactK * double(shell->scale() * shell->scale());
         const Wrench6 before = acc_;
@@ -194,8 +197,9 @@ private:
           addContact(acc_, r, sm.distance, R * sm.gradient, R * sm.hessian * Rt, k);
           full = ++n >= int(p_.maxContacts);
         };
-        if (p_.culling) shell->forEachCandidate(overlaps, test);
-        else shell->forEach(test);
+        if (!p_.culling) shell->forEach(test);
+        else if (shell == s.fine) shell->forEachIn(candidates_, test);
+        else shell->forEachCandidate(overlaps, test);
         if (full && shell == s.fine) {
           acc_ = before;  // too many contacts: redo with the coarse shell
           shell = coarse();
@@ -240,6 +244,7 @@ private:
   double reach_;
   double reachTip_;  // the burr's radius: its leading point is this far ahead of its centre
   std::vector<Shells> shells_;
+  std::vector<int> candidates_;  // the fine shell's buckets gatherContacts visits
   Wrench6 acc_;
   Pose tool_, lastDevice_;
   bool touched_ = false;  // the last step had contacts (a step that loses them all is held short)

@@ -11,15 +11,23 @@
 
 namespace millsim {
 
-struct Obb {
-  glm::dvec3 centre{0.0};
-  glm::dvec3 axis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  // unit, orthogonal
-  glm::dvec3 half{0.0};
+class Obb {
+public:
+  // axes: unit and orthogonal; half: half extents along them.
+  Obb(const glm::dvec3& centre, const glm::dvec3 (&axes)[3], const glm::dvec3& half)
+      : centre_(centre), axis_{axes[0], axes[1], axes[2]}, half_(half) {
+    // |axis[j] · e_i| with an epsilon against parallel edges: the same for
+    // every box tested, so computed once (the hierarchy's culling tests every
+    // super-bucket, twice a frame: 15 % of #3's instructions over the §8.2
+    // procedure went to this test, a fifth of it to these nine terms).
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) r_[i][j] = std::abs(axis_[j][i]) + 1e-9;
+  }
 
   bool contains(const glm::dvec3& p) const {
-    const glm::dvec3 d = p - centre;
-    return std::abs(glm::dot(d, axis[0])) <= half.x && std::abs(glm::dot(d, axis[1])) <= half.y &&
-           std::abs(glm::dot(d, axis[2])) <= half.z;
+    const glm::dvec3 d = p - centre_;
+    return std::abs(glm::dot(d, axis_[0])) <= half_.x && std::abs(glm::dot(d, axis_[1])) <= half_.y &&
+           std::abs(glm::dot(d, axis_[2])) <= half_.z;
   }
 
   // Separating-axis test against an axis-aligned box: the 3 box axes, the 3
@@ -28,25 +36,28 @@ struct Obb {
     if (box.empty()) return false;
     const glm::dvec3 bc = (glm::dvec3(box.lo) + glm::dvec3(box.hi)) * 0.5;
     const glm::dvec3 be = (glm::dvec3(box.hi) - glm::dvec3(box.lo)) * 0.5;
-    const glm::dvec3 t = centre - bc;
-    // R[i][j] = |axis[j] · e_i|, with an epsilon against parallel edges.
-    double R[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) R[i][j] = std::abs(axis[j][i]) + 1e-9;
+    const glm::dvec3 t = centre_ - bc;
+    const auto& R = r_;
     for (int i = 0; i < 3; ++i)  // world axes
-      if (std::abs(t[i]) > be[i] + half.x * R[i][0] + half.y * R[i][1] + half.z * R[i][2]) return false;
+      if (std::abs(t[i]) > be[i] + half_.x * R[i][0] + half_.y * R[i][1] + half_.z * R[i][2]) return false;
     for (int j = 0; j < 3; ++j)  // OBB axes
-      if (std::abs(glm::dot(t, axis[j])) > be.x * R[0][j] + be.y * R[1][j] + be.z * R[2][j] + half[j]) return false;
+      if (std::abs(glm::dot(t, axis_[j])) > be.x * R[0][j] + be.y * R[1][j] + be.z * R[2][j] + half_[j]) return false;
     for (int i = 0; i < 3; ++i)  // e_i × axis[j]
       for (int j = 0; j < 3; ++j) {
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
         const double ra = be[i1] * R[i2][j] + be[i2] * R[i1][j];
-        const double rb = half[j1] * R[i][j2] + half[j2] * R[i][j1];
-        const double proj = t[i2] * axis[j][i1] - t[i1] * axis[j][i2];
+        const double rb = half_[j1] * R[i][j2] + half_[j2] * R[i][j1];
+        const double proj = t[i2] * axis_[j][i1] - t[i1] * axis_[j][i2];
         if (std::abs(proj) > ra + rb) return false;
       }
     return true;
   }
+
+private:
+  glm::dvec3 centre_;
+  glm::dvec3 axis_[3];
+  glm::dvec3 half_;
+  double r_[3][3];
 };
 
 }  // namespace millsim

@@ -109,18 +109,30 @@ public:
   // Rebuilds every bucket (after changes this shell missed). Does not allocate.
   void rebuildAll(const VoxelVolume& volume);
 
-  // Points in the buckets `overlaps` accepts, without visiting them (for a work budget).
-  template <class Overlaps> std::size_t countCandidates(Overlaps&& overlaps) const {
+  // The buckets `overlaps` accepts, as forEachCandidate would visit them
+  // (indices into `out`, cleared first), and their points' count: one
+  // traversal for a budget check and the visit after it. Does not allocate
+  // once `out` holds bucketCount().
+  template <class Overlaps> std::size_t collectCandidates(Overlaps&& overlaps, std::vector<int>& out) const {
+    out.clear();
     std::size_t n = 0;
     for (const Super& s : supers_) {
       if (s.count == 0 || !overlaps(s.box)) continue;
       for (int b : s.buckets) {
         const Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.size != 0 && overlaps(bucket.box)) n += bucket.size;
+        if (bucket.size != 0 && overlaps(bucket.box)) n += bucket.size, out.push_back(b);
       }
     }
     return n;
   }
+  // Visits the points of the buckets collectCandidates listed.
+  template <class Visit> void forEachIn(const std::vector<int>& listed, Visit&& visit) const {
+    for (int b : listed) {
+      const Bucket& bucket = buckets_[std::size_t(b)];
+      for (const ShellPoint *p = first(bucket), *end = p + bucket.size; p != end; ++p) visit(*p);
+    }
+  }
+  std::size_t bucketCount() const { return buckets_.size(); }
   // Whether any candidate point satisfies `pred` (stops at the first).
   template <class Overlaps, class Pred> bool anyCandidate(Overlaps&& overlaps, Pred&& pred) const {
     for (const Super& s : supers_) {
