@@ -245,7 +245,7 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
 
 void HapticLoop::stepSimulated() {
   const double dt = 1.0 / settings_.rate;
-  const double t = frameTime(nextFrame_);
+  const double t = nextSimulatedTime();
   frame(t, dt, dt * 1e6);
   stats_.elapsed = t;
 }
@@ -254,7 +254,7 @@ void HapticLoop::stepSimulatedAfter(double period) {
   if (!(period > 0.0) || !std::isfinite(period))
     throw std::invalid_argument("HapticLoop::stepSimulatedAfter: the period must be a positive number of seconds");
   if (nextFrame_ > 0) stalled_ += period - 1.0 / settings_.rate;
-  const double t = frameTime(nextFrame_);
+  const double t = nextSimulatedTime();
   frame(t, frameDt(period * 1e6), period * 1e6);
   stats_.elapsed = t;
 }

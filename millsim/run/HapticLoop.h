@@ -116,8 +116,9 @@ public:
   // Simulated time on this thread: the next frame at t = frame / rate.
   void stepSimulated();
   // Simulated time on this thread: the next frame `period` seconds after the
-  // previous one, as a real-time loop sees a stall (the device integrates over
-  // frameDt, the safety layer sees the gap); later frames keep the delay.
+  // previous one, as a real-time loop sees a stall (the renderer steps over
+  // frameDt, the device and the safety layer see the whole gap); later frames
+  // keep the delay.
   void stepSimulatedAfter(double period);
   // Simulated time on this thread: a frame of a recorded run (RecordedRun),
   // with the world device pose, button, time and period its log holds. The
@@ -172,7 +173,6 @@ public:
   // Why the device stopped the run (empty if it did not).
   const std::string& failure() const { return failure_; }
   const LoopSettings& settings() const { return settings_; }
-  double frameTime(long frame) const { return double(frame) / settings_.rate + stalled_; }
 
 private:
   void frame(double t, double dt, double periodUs);
@@ -203,6 +203,7 @@ private:
   double sampleTime_ = 0.0;
   long nextFrame_ = 0;
   double stalled_ = 0.0;  // s; simulated time lost to stepSimulatedAfter's stalls
+  double nextSimulatedTime() const { return double(nextFrame_) / settings_.rate + stalled_; }
   // Every consumer of milled blocks (graphics, region accounting), each with
   // the volume it follows and the mill epoch it last saw.
   struct Publisher {
