@@ -67,7 +67,8 @@ void printSummary(std::ostream& os, const LoopStats& s, const std::string& rende
   os << "  peak force " << std::setprecision(3) << s.peakForce << " N, peak torque " << std::setprecision(4)
      << s.peakTorque << " N·m, frames in contact " << s.contactFrames << ", most contacts " << s.maxContacts << "\n";
   os << "  removed volume " << std::setprecision(3) << s.removedVolume * 1e9 << " mm³\n";
-  os << "  safety: clamped " << s.safety.clamped << ", watchdog trips " << s.safety.watchdogTrips << ", non-finite "
+  os << "  safety: clamped " << s.safety.clamped << ", late frames blended " << s.safety.hiccups << ", watchdog trips "
+     << s.safety.watchdogTrips << ", non-finite "
      << s.safety.nonFinite << "; device: sequence gaps " << s.device.sequenceGaps << ", checksum errors "
      << s.device.checksumErrors << "; log records dropped " << s.recordsDropped << "\n";
   os << "  real-time priority: "

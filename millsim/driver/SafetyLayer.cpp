@@ -100,8 +100,8 @@ SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque
   }
   SafeWrench out;
   if (hiccup) {
-    ++counters_.watchdogTrips;
-    out.events |= kSafetyWatchdog;
+    ++counters_.hiccups;
+    out.events |= kSafetyHiccup;
     blendForce_ = sentForce_;
     blendTorque_ = sentTorque_;
     blendStart_ = t;

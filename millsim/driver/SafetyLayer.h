@@ -15,7 +15,7 @@
 //    softStartTime after the run starts, so the hand never feels a step when
 //    forces begin;
 //  - the magnitudes are clamped to forceLimit and torqueLimit.
-// Each of the first three counts as a watchdog trip or a non-finite frame.
+// They are counted as non-finite frames, watchdog trips and hiccups.
 // It runs on the haptic thread: no allocation, no locks.
 #include <cstdint>
 
@@ -44,6 +44,9 @@ enum SafetyEvent : std::uint32_t {
   kSafetyRamping = 1u << 11,
   // The loop's last row: the device was stopped and its output zeroed.
   kSafetyStopped = 1u << 12,
+  // A late frame on a fresh pose whose output was blended from the held
+  // wrench, not zeroed (a hiccup; kSafetyWatchdog marks zeroed frames).
+  kSafetyHiccup = 1u << 13,
 };
 
 struct SafeWrench {
@@ -52,9 +55,11 @@ struct SafeWrench {
   std::uint32_t events = 0;
 };
 
-// Frames affected, per cause (a 20 ms stall at 1 kHz counts ~15 watchdog frames).
+// Frames affected, per cause (a 20 ms stall at 1 kHz counts ~15 watchdog
+// frames). watchdogTrips: frames zeroed for a stale pose or a long stall;
+// hiccups: late frames blended from the held wrench instead.
 struct SafetyCounters {
-  std::uint64_t nonFinite = 0, watchdogTrips = 0, clamped = 0;
+  std::uint64_t nonFinite = 0, watchdogTrips = 0, clamped = 0, hiccups = 0;
 };
 
 class SafetyLayer {

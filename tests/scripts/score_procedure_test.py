@@ -16,7 +16,7 @@ HEADER = ("t,x,y,z,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,frame_us,draw_x,draw_y
           "draw_qz,proxy_x,proxy_y,proxy_z,ip_x,ip_y,ip_z,button,removed_mm3,flags,period_us").split(",")
 
 
-def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0, rest=None, seed=1):
+def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0, rest=None, seed=1, hiccup=False):
     rng = np.random.default_rng(seed)
     n = 40000
     t = np.arange(n) * 1e-3
@@ -29,6 +29,9 @@ def write_log(path, force_noise=0.0, kick=0.0, period_us=1000.0, shaft_noise=0.0
     # A watchdog trip with its soft start at 35 s: a loop event, not the renderer's; it must not cost force.
     cols["flags"][35000:35250] = (1 << 9) | (1 << 11)
     cols["fy"][35000] = 0.0
+    if hiccup:  # a late frame at 36 s, the held wrench sent (no blend after it): a loop event, not a kick
+        cols["flags"][36000] = 1 << 13
+        cols["tz"][36000] += 0.05
     if rest is not None:  # leaning in harder over the last half second
         cols["fy"][-500:] = np.linspace(cols["fy"][-500], rest, 500)
     # The loop's last row: the device stopped, its output zeroed (SafetyLayer's kSafetyStopped).
@@ -42,7 +45,7 @@ def main():
     with tempfile.TemporaryDirectory() as d:
         logs = {name: os.path.join(d, name + ".csv")
                 for name in ("smooth", "noisy", "kick", "slow", "shaky", "resting")}
-        write_log(logs["smooth"])
+        write_log(logs["smooth"], hiccup=True)
         write_log(logs["noisy"], force_noise=0.2)
         write_log(logs["kick"], kick=0.05)
         write_log(logs["slow"], period_us=1250.0)
