@@ -47,6 +47,7 @@ Trace runClosedLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algorith
   s.rate = run.rate;
   s.timing = false;  // simulated time: bit-reproducible
   s.logCapacity = 8;
+  s.limits.deviceHold = run.hand.outputHold;
   Pose truePose;
   auto driver = std::make_unique<DroppingDriver>(makeHandDriver(run.reference, run.hand, false), run.dropFraction,
                                                  run.seed, truePose);

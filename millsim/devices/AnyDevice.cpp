@@ -1,5 +1,6 @@
 #include "millsim/devices/AnyDevice.h"
 
+#include "millsim/driver/AresProtocol.h"
 #include "millsim/driver/DeviceDriver.h"
 
 namespace millsim {
@@ -21,6 +22,8 @@ const MouseDevice& AnyDevice::mouse() const {
   mouse_->depthStep.set(depthStep.get());
   return *mouse_;
 }
+
+double AnyDevice::outputHoldTime() const { return ares::kDeviceWatchdogSeconds; }
 
 std::unique_ptr<DeviceDriver> AnyDevice::openDriver(const DriverOptions& options) const {
   // The ARES driver clamps to its own limits too: the same as this node's.

@@ -38,6 +38,9 @@ public:
 
   // Tries the ARES, then the mouse (options.pointer); DeviceError naming both otherwise.
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
+  // The ARES's, whichever it opens: the mouse's output goes nowhere, and a
+  // review of the run, which opens nothing, repeats the same decisions.
+  double outputHoldTime() const override;
   // The mouse it falls back on, set up from its fields (the window needs its start pose).
   const MouseDevice& mouse() const;
   // After openDriver: whether it follows the mouse (no ARES was found).

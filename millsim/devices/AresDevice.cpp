@@ -13,6 +13,8 @@ const NodeType& AresDevice::type() {
   return t;
 }
 
+double AresDevice::outputHoldTime() const { return ares::kDeviceWatchdogSeconds; }
+
 std::unique_ptr<DeviceDriver> AresDevice::openDriver(const DriverOptions&) const {
   UsbMatch m;
   m.vendorId = static_cast<std::uint16_t>(vendorId.get());

@@ -22,6 +22,8 @@ public:
   // Opens and claims the device; DeviceError says what was looked for and
   // which USB devices were seen when none matches.
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
+  // The firmware's watchdog (docs/ares-protocol.md, device rule 4).
+  double outputHoldTime() const override;
 };
 
 }  // namespace millsim

@@ -32,6 +32,7 @@ HandModel HandDevice::model() const {
   m.deviceInertia = deviceInertia.get();
   m.deviceAngularDamping = deviceAngularDamping.get();
   m.releaseTime = releaseTime.get();
+  m.outputHold = outputHold.get();
   return m;
 }
 
@@ -68,7 +69,20 @@ public:
       return {pose_, ref.button, true};
     }
     const double h = t - previousT_;
-    if (h > 0.0) integrate(ref.pose, h, t >= model_.releaseTime && model_.releaseTime >= 0.0);
+    const bool released = t >= model_.releaseTime && model_.releaseTime >= 0.0;
+    // The device drops the last wrench outputHold after it was sent (only
+    // after a stall of the loop: a frame sends a new one every period).
+    const double drop = sentAt_ + model_.outputHold;
+    if (h > 0.0 && drop < t) {
+      if (drop > previousT_) {  // held for the first part of this step
+        const TrajectorySample mid = reference(drop);
+        integrate(mid.pose, drop - previousT_, released);
+        previousRef_ = mid.pose;
+        previousT_ = drop;
+      }
+      force_ = torque_ = glm::dvec3(0.0);
+    }
+    if (t - previousT_ > 0.0) integrate(ref.pose, t - previousT_, released);
     previousRef_ = ref.pose;
     previousT_ = t;
     return {pose_, ref.button, true};
@@ -77,6 +91,7 @@ public:
   void write(const glm::dvec3& force, const glm::dvec3& torque) override {
     force_ = force;
     torque_ = torque;
+    sentAt_ = previousT_;  // written in the frame of the last read
   }
   double naturalDuration() const override {
     return loop_ ? DeviceDriver::naturalDuration() : trajectory_.endTime() - trajectory_.startTime();
@@ -129,6 +144,7 @@ private:
   bool started_ = false;
   Pose pose_, previousRef_;
   double previousT_ = 0.0;
+  double sentAt_ = 0.0;  // when the held wrench was written
   glm::dvec3 velocity_{0.0}, omega_{0.0};
   glm::dvec3 force_{0.0}, torque_{0.0};
 };

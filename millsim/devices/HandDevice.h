@@ -19,6 +19,9 @@ struct HandModel {
   double deviceMass = 0.15, deviceDamping = 1.0;                      // kg, N·s/m
   double deviceInertia = 1e-4, deviceAngularDamping = 0.002;         // kg·m², N·m·s/rad
   double releaseTime = -1.0;  // s; from then on the hand has let go (negative: never)
+  // s; the device applies a wrench this long after it was sent, then drops it
+  // (ARES's watchdog, docs/ares-protocol.md); infinite: until the next one.
+  double outputHold = 0.010;
 };
 
 class HandDevice : public HapticsDevice {
@@ -51,6 +54,10 @@ public:
                                "Device rotational friction as damping (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularStiffness)};
   SFFloat releaseTime{this, "releaseTime", Access::InitializeOnly, -1.f,
                       "Time (s) at which the hand lets go of the handle; negative: never.", Range::closed(-1, 1e6)};
+  SFFloat outputHold{this, "outputHold", Access::InitializeOnly, 0.01f,
+                     "How long (s) the simulated device applies a wrench when no new one arrives, then drops it "
+                     "(the ARES firmware: 0.01).",
+                     Range::closed(0.001, 10)};
 
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
   bool followsTrajectory() const override { return true; }
@@ -58,6 +65,7 @@ public:
   void initialize(DiagnosticSink& sink) override;
 
   HandModel model() const;
+  double outputHoldTime() const override { return double(outputHold.get()); }
 
 private:
   std::shared_ptr<const Trajectory> trajectory_;

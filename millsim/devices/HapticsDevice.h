@@ -76,6 +76,12 @@ public:
   // The trajectory a simulated device loaded from its url (null for hardware
   // or an empty url): what replay and render follow by default.
   virtual std::shared_ptr<const Trajectory> trajectory() const { return nullptr; }
+  // How long (s) the device keeps applying the last wrench when no new one
+  // arrives. The safety layer blends a late frame within it from that wrench;
+  // after it the device has dropped the wrench, and so does the layer
+  // (SafetyLimits::deviceHold). 0 (the default): unknown, every late frame
+  // is zeroed.
+  virtual double outputHoldTime() const { return 0.0; }
   void initialize(DiagnosticSink& sink) override;
 };
 

@@ -15,6 +15,9 @@ inline constexpr std::uint8_t kVersion = 1;
 inline constexpr std::uint8_t kTypeState = 0x01;    // device → host, EP 0x81
 inline constexpr std::uint8_t kTypeCommand = 0x02;  // host → device, EP 0x01
 inline constexpr std::size_t kStateFrameSize = 64;
+// Device rule 4: with no valid command for this long the device ramps its
+// output to zero; until then it applies the last one.
+inline constexpr double kDeviceWatchdogSeconds = 0.010;
 inline constexpr std::size_t kCommandFrameSize = 40;
 inline constexpr std::size_t kMaxPacketSize = 64;  // wMaxPacketSize of both endpoints
 

@@ -38,7 +38,8 @@ SafetyLayer::SafetyLayer(const SafetyLimits& limits) : limits_(limits) {
   requirePositive(limits.torqueLimit, "torqueLimit", false);
   requirePositive(limits.softStartTime, "softStartTime", true);
   requirePositive(limits.watchdogTimeout, "watchdogTimeout", false);
-  requirePositive(limits.stallRamp, "stallRamp", true);
+  requirePositive(limits.recoveryScale, "recoveryScale", false);
+  requirePositive(limits.deviceHold, "deviceHold", true);
 }
 
 void SafetyLayer::setLimits(double forceLimit, double torqueLimit) {
@@ -89,7 +90,7 @@ SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque
   previousFrame_ = t;
   const bool stale = t - sampleTime > timeout;
   const bool stalled = gap > timeout;
-  const bool hiccup = stalled && !stale && !tripped_ && gap <= 2.0 * timeout;
+  const bool hiccup = stalled && !stale && !tripped_ && gap <= limits_.deviceHold;
   if (stale || (stalled && !hiccup)) {
     ++counters_.watchdogTrips;
     return trip(t, kSafetyWatchdog, false);
@@ -105,12 +106,13 @@ SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque
     blendForce_ = sentForce_;
     blendTorque_ = sentTorque_;
     blendStart_ = t;
-    blendLength_ = limits_.stallRamp * gap;
+    blendLength_ = gap;
   }
   if (tripped_) {
     const double soft = limits_.softStartTime;
     const double kept = interruptedRamp_ ? rampLength_ : 0.0;  // a trip never shortens a ramp under way
-    rampLength_ = fullRamp_ ? soft : std::min(soft, std::max(limits_.stallRamp * (t - lastOutput_), kept));
+    const double outage = t - lastOutput_;
+    rampLength_ = fullRamp_ ? soft : std::min(soft, std::max(outage * outage / limits_.recoveryScale, kept));
     tripped_ = fullRamp_ = false;
   }
   lastOutput_ = t;

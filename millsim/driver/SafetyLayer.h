@@ -3,14 +3,15 @@
 // simulated or real. Every frame's output passes through filter():
 //  - NaN or Inf anywhere → zero output, then the whole soft start;
 //  - a stale device sample (older than the watchdog timeout) or a loop stall
-//    longer than twice the timeout → zero output (where the device is, or
-//    what it did meanwhile, is unknown), then a ramp from zero lasting
-//    stallRamp times the outage, at most softStartTime;
-//  - a hiccup: a loop frame later than the timeout but within twice it, on a
-//    fresh sample. The device has held the last wrench meanwhile (ARES holds
-//    it for 10 ms), so the output blends from that wrench to the new one over
-//    stallRamp times the stall instead of dropping: a 6 ms preemption
-//    neither takes the wall away nor steps it;
+//    longer than the device's hold → zero output (where the device is, or
+//    what it did meanwhile, is unknown; it has dropped the wrench itself),
+//    then a ramp from zero lasting T²/recoveryScale for an outage T, at most
+//    softStartTime;
+//  - a hiccup: a loop frame later than the timeout but within the device's
+//    hold (deviceHold; ARES holds the last wrench for 10 ms), on a fresh
+//    sample. The device has applied the last wrench meanwhile, so the output
+//    blends from it to the new one over as long as the stall instead of
+//    dropping: a 6 ms preemption neither takes the wall away nor steps it;
 //  - soft start: the output is scaled by a ramp from 0 to 1 over
 //    softStartTime after the run starts, so the hand never feels a step when
 //    forces begin;
@@ -28,12 +29,21 @@ struct SafetyLimits {
   double torqueLimit = 0.5;       // N·m
   double softStartTime = 0.25;    // s; 0 = no ramp
   double watchdogTimeout = 0.005; // s; older samples and longer stalls trip the watchdog
-  // Seconds of ramp or blend per second of outage after a trip (the outage:
-  // time since the last frame with output). A pressing hand keeps falling in
-  // until the force is back, so the ramp is kept short: with 1 a 26 ms
-  // outage lets it sink 0.11 mm, with 4 0.36 mm, at about the same peak
-  // force on return (Stability's stall harness, measured at 12-50 ms).
-  double stallRamp = 1.0;
+  // s; after an outage T (the time since the last frame with output) the
+  // ramp back from zero lasts T²/recoveryScale, at most softStartTime. A
+  // pressing hand falls in until the force is back, by about T², and so does
+  // the kick a ramp softens: short outages come back almost at once (26 ms:
+  // 7 ms), long ones gently (0.1 s: 0.1 s). Stability's stall harness, the
+  // hand pressing with 0.4 N on an ARES-like device: a 26 ms outage sank it
+  // 0.17 mm with a return peak of 1.8-2.0x the held force, against 0.27 mm
+  // and 2.3-2.6x with a ramp as long as the outage, and 0.14 mm and 1.7-1.8x
+  // with none; 0.1 s: about 1 mm and 2.2-2.5x with either ramp, 5-5.7x with
+  // none. At 50 ms this ramp (25 ms) returned the highest peak, 3.1-3.8x
+  // against 2.8-3.2x.
+  double recoveryScale = 0.1;
+  // How long (s) the device keeps applying the last wrench without a new one
+  // (HapticsDevice::outputHoldTime; 0: unknown). Late frames within it are hiccups.
+  double deviceHold = 0.0;
 };
 
 // What the layer did to a frame, as bits (also written to the log's flags column).

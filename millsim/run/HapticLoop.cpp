@@ -61,6 +61,9 @@ LoopSettings LoopSettings::from(const HapticsDevice& device, const ToolGeometry&
   s.calibrationOffset = glm::dvec3(device.positionCalibration.get());
   s.limits.forceLimit = device.forceLimit.get();
   s.limits.torqueLimit = device.torqueLimit.get();
+  // From the node, not the opened driver: a review of a recorded run (which
+  // opens no device) then repeats the run's safety decisions.
+  s.limits.deviceHold = device.outputHoldTime();
   s.enabled = device.enabled.get();
   s.tool = tool;
   return s;

@@ -130,10 +130,11 @@ TEST(SafetyLayer, LateFrameTripsTheWatchdogAndRestartsTheRamp) {
   EXPECT_EQ(w.torque, glm::dvec3(0.0));
   EXPECT_TRUE(w.events & kSafetyWatchdog);
   EXPECT_EQ(s.counters().watchdogTrips, 1u);
-  // On time again: ramps up from zero over softStartTime.
+  // On time again: ramps up from zero over the outage (22 ms since the last
+  // output) squared over recoveryScale, 4.84 ms (at most softStartTime).
   t += kDt;
   w = s.filter({0, 0, 2.0}, {}, t, t);
-  EXPECT_NEAR(w.force.z, 2.0 * 0.1, 1e-9);
+  EXPECT_NEAR(w.force.z, 2.0 * kDt / (0.022 * 0.022 / 0.1), 1e-9);
   for (int i = 0; i < 10; ++i) t += kDt, w = s.filter({0, 0, 2.0}, {}, t, t);
   EXPECT_NEAR(w.force.z, 2.0, 1e-12);
   EXPECT_FALSE(w.events & kSafetyRamping);
@@ -142,7 +143,9 @@ TEST(SafetyLayer, LateFrameTripsTheWatchdogAndRestartsTheRamp) {
 // A preemption between 5 and 10 ms: the device held the last wrench, so the
 // output blends from it to the new one over as long as the stall.
 TEST(SafetyLayer, AHiccupBlendsFromTheHeldWrenchInsteadOfDropping) {
-  SafetyLayer s(noRamp());
+  SafetyLimits l = noRamp();
+  l.deviceHold = 0.010;  // ARES
+  SafetyLayer s(l);
   double t = 0.0;
   for (int i = 0; i < 20; ++i, t += kDt) s.filter({0, 0, 2.0}, {0.1, 0, 0}, t, t);
   t += 0.006 - kDt;  // 6 ms after the last frame
@@ -164,15 +167,33 @@ TEST(SafetyLayer, AHiccupBlendsFromTheHeldWrenchInsteadOfDropping) {
     }
   }
   EXPECT_EQ(s.counters().hiccups, 1u);
+  // Past the device's hold the device has dropped the wrench: zeroed.
+  t += 0.011;
+  w = s.filter({0, 0, 3.0}, {}, t, t);
+  EXPECT_EQ(w.force, glm::dvec3(0.0));
+  EXPECT_TRUE(w.events & kSafetyWatchdog);
 }
 
-// Longer than twice the timeout: the device may have dropped the wrench (ARES
-// does after 10 ms), so the output restarts from zero, over as long as the
-// outage, and never over more than the soft start.
-TEST(SafetyLayer, AStallZeroesTheOutputAndRampsOverFourTimesTheOutage) {
+// A device that does not say how long it holds a wrench: every late frame is zeroed.
+TEST(SafetyLayer, WithoutAKnownDeviceHoldALateFrameIsZeroed) {
+  SafetyLayer s(noRamp());
+  double t = 0.0;
+  for (int i = 0; i < 20; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);
+  t += 0.006 - kDt;
+  const SafeWrench w = s.filter({0, 0, 2.0}, {}, t, t);
+  EXPECT_EQ(w.force, glm::dvec3(0.0));
+  EXPECT_TRUE(w.events & kSafetyWatchdog);
+  EXPECT_EQ(s.counters().hiccups, 0u);
+}
+
+// Longer than the device's hold: the device has dropped the wrench (ARES
+// does after 10 ms), so the output restarts from zero, over the outage
+// squared over recoveryScale (0.1 s), and never over more than the soft start.
+TEST(SafetyLayer, AStallZeroesTheOutputAndRampsBackTheSoonerTheShorterItWas) {
   for (const double stall : {0.020, 0.100}) {
     SafetyLimits l = noRamp();
     l.softStartTime = 0.25;
+    l.deviceHold = 0.010;
     SafetyLayer s(l);
     double t = 0.0;
     for (int i = 0; i < 300; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);  // the soft start is over
@@ -182,7 +203,8 @@ TEST(SafetyLayer, AStallZeroesTheOutputAndRampsOverFourTimesTheOutage) {
     EXPECT_EQ(w.force, glm::dvec3(0.0));
     EXPECT_TRUE(w.events & kSafetyWatchdog);
     const double tripped = t;
-    const double ramp = std::min(0.25, t + kDt - lastOutput);
+    const double outage = t + kDt - lastOutput;
+    const double ramp = std::min(0.25, outage * outage / 0.1);
     for (int i = 1; i <= 300; ++i) {
       t += kDt;
       w = s.filter({0, 0, 2.0}, {}, t, t);
@@ -196,6 +218,7 @@ TEST(SafetyLayer, AStallZeroesTheOutputAndRampsOverFourTimesTheOutage) {
 TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
   SafetyLimits l = noRamp();
   l.softStartTime = 0.25;
+  l.deviceHold = 0.010;
   SafetyLayer s(l);
   double t = 0.0;
   for (int i = 0; i < 50; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);
@@ -203,7 +226,7 @@ TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
   EXPECT_EQ(s.filter({0, 0, 2.0}, {}, t, t).force, glm::dvec3(0.0));
   const double tripped = t;
   t += kDt;
-  EXPECT_NEAR(s.filter({0, 0, 2.0}, {}, t, t).force.z, 2.0 * kDt / 0.25, 1e-9) << "a ramp of 21 ms, not 250";
+  EXPECT_NEAR(s.filter({0, 0, 2.0}, {}, t, t).force.z, 2.0 * kDt / 0.25, 1e-9) << "a ramp of 4.4 ms, not 250";
   // A hiccup during the new ramp blends from what was sent towards the ramped
   // wrench: still below the ramp's line, never a step.
   t += 0.007;
@@ -271,8 +294,11 @@ TEST(SafetyLayer, RejectsInvalidLimitsNamingTheValue) {
     l.softStartTime = bad;
     expectThrow(l, "softStartTime");
     l = noRamp();
-    l.stallRamp = bad;
-    expectThrow(l, "stallRamp");
+    l.recoveryScale = bad;
+    expectThrow(l, "recoveryScale");
+    l = noRamp();
+    l.deviceHold = bad;
+    expectThrow(l, "deviceHold");
   }
   SafetyLimits ok = noRamp();
   ok.softStartTime = 0.0;

@@ -191,13 +191,15 @@ TEST_P(Stability, AStallWhilePressingDoesNotLetTheHandFallIn) {
   EXPECT_LE(r.recovery, 0.04) << "the force stayed away after a 6 ms stall";
   EXPECT_LE(r.peakForce, 1.25 * r.heldForce) << "the force kicked back after a 6 ms stall";
   EXPECT_LE(r.sink, 50e-6) << "the hand fell into the surface during a 6 ms stall";
-  // 26 ms: the device has dropped the wrench (ARES does after 10 ms), the
-  // hand falls until the force is back, so it must come back soon.
+  // 26 ms: the device has dropped the wrench after 10 ms (as ARES does) and
+  // the hand falls until the force is back, so it must come back soon: a
+  // ramp as long as the outage let it sink 0.27 mm and kick back at 2.3-2.6x.
   const StallResult lost = runStall({GetParam(), {}}, 0.026);
   std::cout << GetParam() << " | 26 ms stall | held " << lost.heldForce << " N | back to 90 % after "
             << lost.recovery * 1e3 << " ms | peak " << lost.peakForce << " N | sank " << lost.sink * 1e6 << " um\n";
   EXPECT_LE(lost.recovery, 0.03) << "the force stayed away after a 26 ms stall";
-  EXPECT_LE(lost.sink, 150e-6) << "the hand fell into the surface after a 26 ms stall";
+  EXPECT_LE(lost.sink, 200e-6) << "the hand fell into the surface after a 26 ms stall";
+  EXPECT_LE(lost.peakForce, 2.2 * lost.heldForce) << "the force kicked back after a 26 ms stall";
 }
 
 // ---- fall-through -------------------------------------------------------------

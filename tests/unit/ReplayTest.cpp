@@ -16,6 +16,7 @@
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/RecordedRun.h"
+#include "millsim/driver/SafetyLayer.h"
 #include "millsim/run/LiveUpdates.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/run/RendererPool.h"
@@ -161,6 +162,49 @@ TEST(Review, ALogReplaysToItselfForEveryRenderer) {
     EXPECT_EQ(RecordedRun::parse(log, "run.csv").frames().size(), 301u) << "the stop row is not a frame";
     EXPECT_EQ(reviewToString(scene, log), log) << renderer;
   }
+}
+
+// A recorded run whose loop stalled before row `row` for `stall` seconds
+// (its times from there on later, that row's period longer): what the review
+// flags at that row. The review opens no device, so it must take the device's
+// hold from the scene's node (HandDevice's outputHold, 10 ms) to decide as the
+// run did.
+std::uint32_t reviewedFlagsAfterAStall(const std::string& scene, const std::string& log, std::size_t row, double stall) {
+  std::istringstream in(log);
+  std::string line, edited;
+  std::getline(in, line);
+  edited = line + "\n";
+  std::vector<std::string> cells;
+  for (std::size_t n = 0; std::getline(in, line); ++n) {
+    cells.clear();
+    std::istringstream split(line);
+    for (std::string cell; std::getline(split, cell, ',');) cells.push_back(cell);
+    if (n >= row && cells.size() > 32 && std::stod(cells[32]) > 0.0) {  // not the stop row
+      cells[0] = std::to_string(std::stod(cells[0]) + stall);
+      if (n == row) cells[32] = std::to_string(std::stod(cells[32]) + stall * 1e6);
+    }
+    for (std::size_t c = 0; c < cells.size(); ++c) edited += (c ? "," : "") + cells[c];
+    edited += "\n";
+  }
+  std::istringstream reviewed(reviewToString(scene, edited));
+  std::getline(reviewed, line);  // the header
+  for (std::size_t n = 0; n <= row; ++n)
+    if (!std::getline(reviewed, line)) return ~0u;
+  std::istringstream split(line);
+  std::string cell;
+  for (int c = 0; c < 32; ++c) std::getline(split, cell, ',');  // flags is column 31
+  return std::uint32_t(std::stoul(cell));
+}
+
+TEST(Review, ALateFrameIsJudgedWithTheDevicesOwnHold) {
+  const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
+  const std::string log = replayToString(scene, "LineProxyRenderer");
+  const std::uint32_t hiccup = reviewedFlagsAfterAStall(scene, log, 150, 0.006);
+  EXPECT_TRUE(hiccup & kSafetyHiccup) << "6 ms late, within the device's 10 ms hold: blended";
+  EXPECT_FALSE(hiccup & kSafetyWatchdog);
+  const std::uint32_t dropped = reviewedFlagsAfterAStall(scene, log, 150, 0.015);
+  EXPECT_TRUE(dropped & kSafetyWatchdog) << "15 ms late, past the device's hold: zeroed";
+  EXPECT_FALSE(dropped & kSafetyHiccup);
 }
 
 TEST(Review, TheRunsRendererSwapsAreMadeAgain) {
