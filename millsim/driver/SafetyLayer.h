@@ -33,13 +33,8 @@ struct SafetyLimits {
   // ramp back from zero lasts T²/recoveryScale, at most softStartTime. A
   // pressing hand falls in until the force is back, by about T², and so does
   // the kick a ramp softens: short outages come back almost at once (26 ms:
-  // 7 ms), long ones gently (0.1 s: 0.1 s). Stability's stall harness, the
-  // hand pressing with 0.4 N on an ARES-like device: a 26 ms outage sank it
-  // 0.17 mm with a return peak of 1.8-2.0x the held force, against 0.27 mm
-  // and 2.3-2.6x with a ramp as long as the outage, and 0.14 mm and 1.7-1.8x
-  // with none; 0.1 s: about 1 mm and 2.2-2.5x with either ramp, 5-5.7x with
-  // none. At 50 ms this ramp (25 ms) returned the highest peak, 3.1-3.8x
-  // against 2.8-3.2x.
+  // 7 ms), long ones gently (0.1 s: 0.1 s). Measured against other rules in
+  // docs/algorithms.md (Safety layer).
   double recoveryScale = 0.1;
   // How long (s) the device keeps applying the last wrench without a new one
   // (HapticsDevice::outputHoldTime; 0: unknown). Late frames within it are hiccups.
