@@ -57,10 +57,11 @@ ScenarioResult runScenario(const RendererSpec& renderer, const Scenario& scenari
                            double dropFraction = 0.0, std::uint64_t seed = 1,
                            const StabilityThresholds& limits = StabilityThresholds{});
 
-// A hiccup while pressing: the default hand holds the tool on the half-space,
-// its reference 1 mm below first contact (about 0.5 N through the grip), for
-// 1.5 s; then the loop stalls for `stall` seconds (the safety layer's watchdog
-// trips) and runs on for 0.5 s.
+// A stall while pressing: the default hand holds the tool on the half-space,
+// its reference 1 mm below first contact (about 0.4 N through the grip), for
+// 1.5 s; then the loop stalls for `stall` seconds (a late frame for the
+// safety layer; the simulated device drops its wrench after its 10 ms hold)
+// and runs on for 0.5 s.
 struct StallResult {
   double heldForce = 0.0;  // N, mean force sent over the 0.1 s before the stall
   double recovery = 0.0;   // s from the end of the stall until the force sent is back to 90 % of heldForce

@@ -180,9 +180,9 @@ TEST(ZWidth, DetectsTheRingingBeyondColgatesBound) {
 // ---- a late frame --------------------------------------------------------------
 
 // One 6 ms preemption of the haptic thread while the hand presses the tool on
-// a surface trips the safety layer's watchdog. The wall must not go away: if
-// it does for the whole soft start (0.25 s) the hand, still pushing, falls in
-// and the returning force kicks it out.
+// a surface: a late frame for the safety layer, within the device's 10 ms
+// hold. The wall must not go away: zeroed and soft-started over 0.25 s (the
+// old rule), the hand, still pushing, fell 0.55 mm in and was kicked out.
 TEST_P(Stability, AStallWhilePressingDoesNotLetTheHandFallIn) {
   const StallResult r = runStall({GetParam(), {}}, 0.006);
   std::cout << GetParam() << " | 6 ms stall | held " << r.heldForce << " N | back to 90 % after " << r.recovery * 1e3
