@@ -59,28 +59,61 @@ void BM_SampleNearSurface(benchmark::State& state) {
 }
 BENCHMARK(BM_SampleNearSurface);
 
-// The same points sampled as VolumeSampler did before its one-leaf fast path:
-// eight accessor lookups per trilinear cell. The ratio to BM_SampleNearSurface
-// is the fast path's gain.
+// A trilinear sample as VolumeSampler took it before its leaf fast paths:
+// eight accessor lookups per cell.
+double eightLookups(const VolumeSampler& s, const glm::dvec3& p) {
+  const int i = int(std::floor(p.x)), j = int(std::floor(p.y)), k = int(std::floor(p.z));
+  const double tx = p.x - i, ty = p.y - j, tz = p.z - k;
+  const float c0 = s.voxel(i, j, k), c1 = s.voxel(i + 1, j, k), c2 = s.voxel(i, j + 1, k),
+              c3 = s.voxel(i + 1, j + 1, k), c4 = s.voxel(i, j, k + 1), c5 = s.voxel(i + 1, j, k + 1),
+              c6 = s.voxel(i, j + 1, k + 1), c7 = s.voxel(i + 1, j + 1, k + 1);
+  const double x00 = c0 + (c1 - c0) * tx, x10 = c2 + (c3 - c2) * tx;
+  const double x01 = c4 + (c5 - c4) * tx, x11 = c6 + (c7 - c6) * tx;
+  const double y0 = x00 + (x10 - x00) * ty, y1 = x01 + (x11 - x01) * ty;
+  return y0 + (y1 - y0) * tz;
+}
+
+// The same points sampled with eight lookups: the ratio to
+// BM_SampleNearSurface is the fast paths' gain.
 void BM_SampleNearSurfaceEightLookups(benchmark::State& state) {
   const auto& v = phantom();
   VolumeSampler s(v);
   const std::vector<glm::dvec3> pts = nearSurfacePoints(v);
   for (auto _ : state)
-    for (const auto& p : pts) {
-      const int i = int(std::floor(p.x)), j = int(std::floor(p.y)), k = int(std::floor(p.z));
-      const double tx = p.x - i, ty = p.y - j, tz = p.z - k;
-      const float c0 = s.voxel(i, j, k), c1 = s.voxel(i + 1, j, k), c2 = s.voxel(i, j + 1, k),
-                  c3 = s.voxel(i + 1, j + 1, k), c4 = s.voxel(i, j, k + 1), c5 = s.voxel(i + 1, j, k + 1),
-                  c6 = s.voxel(i, j + 1, k + 1), c7 = s.voxel(i + 1, j + 1, k + 1);
-      const double x00 = c0 + (c1 - c0) * tx, x10 = c2 + (c3 - c2) * tx;
-      const double x01 = c4 + (c5 - c4) * tx, x11 = c6 + (c7 - c6) * tx;
-      const double y0 = x00 + (x10 - x00) * ty, y1 = x01 + (x11 - x01) * ty;
-      benchmark::DoNotOptimize(y0 + (y1 - y0) * tz);
-    }
+    for (const auto& p : pts) benchmark::DoNotOptimize(eightLookups(s, p));
   state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
 }
 BENCHMARK(BM_SampleNearSurfaceEightLookups);
+
+// Near-surface points moved into cells that straddle a leaf boundary along
+// one axis (a third of all cells straddle one or more): VolumeSampler probes
+// each leaf once there; against eight lookups.
+std::vector<glm::dvec3> straddlingPoints(const VoxelVolume& v) {
+  std::vector<glm::dvec3> pts = nearSurfacePoints(v);
+  for (std::size_t n = 0; n < pts.size(); ++n) {
+    double& x = n % 3 == 0 ? pts[n].x : n % 3 == 1 ? pts[n].y : pts[n].z;
+    x = 8.0 * std::floor(x / 8.0) + 7.0 + (x - std::floor(x));
+  }
+  return pts;
+}
+void BM_SampleStraddling(benchmark::State& state) {
+  const auto& v = phantom();
+  VolumeSampler s(v);
+  const std::vector<glm::dvec3> pts = straddlingPoints(v);
+  for (auto _ : state)
+    for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
+  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+}
+BENCHMARK(BM_SampleStraddling);
+void BM_SampleStraddlingEightLookups(benchmark::State& state) {
+  const auto& v = phantom();
+  VolumeSampler s(v);
+  const std::vector<glm::dvec3> pts = straddlingPoints(v);
+  for (auto _ : state)
+    for (const auto& p : pts) benchmark::DoNotOptimize(eightLookups(s, p));
+  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+}
+BENCHMARK(BM_SampleStraddlingEightLookups);
 
 // A milled block published to graphics (BlockChannel::tryPush, on the
 // haptic thread in every milling frame): its 512 values copied from the

@@ -54,14 +54,24 @@ private:
         return;
       }
     }
-    c[0] = voxel(i, j, k);
-    c[1] = voxel(i + 1, j, k);
-    c[2] = voxel(i, j + 1, k);
-    c[3] = voxel(i + 1, j + 1, k);
-    c[4] = voxel(i, j, k + 1);
-    c[5] = voxel(i + 1, j, k + 1);
-    c[6] = voxel(i, j + 1, k + 1);
-    c[7] = voxel(i + 1, j + 1, k + 1);
+    // The cell straddles two to eight leaves: one probe per leaf, not one
+    // accessor lookup per corner (the accessor caches one leaf, so corners
+    // alternating between two leaves missed it every time).
+    const bool sx = (i & 7) == 7, sy = (j & 7) == 7, sz = (k & 7) == 7;
+    const float* data[8] = {};
+    bool probed[8] = {};
+    for (int n = 0; n < 8; ++n) {
+      const int di = n & 1, dj = (n >> 1) & 1, dk = n >> 2;
+      const openvdb::Coord corner(i + di, j + dj, k + dk);
+      const int key = (sx ? di : 0) | (sy ? dj << 1 : 0) | (sz ? dk << 2 : 0);
+      if (!probed[key]) {
+        probed[key] = true;
+        const auto* leaf = acc_.probeConstLeaf(corner);
+        data[key] = leaf ? leaf->buffer().data() : nullptr;
+      }
+      c[n] = data[key] ? data[key][VoxelVolume::Grid::TreeType::LeafNodeType::coordToOffset(corner)]
+                       : acc_.getValue(corner);  // a tile or the background
+    }
   }
 
   mutable VoxelVolume::Grid::ConstAccessor acc_;
