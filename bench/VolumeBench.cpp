@@ -25,17 +25,24 @@ void BM_PhantomBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_PhantomBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
 
+// Times `sample(sampler, p)` over the points, as samples per second. Pass
+// lambdas (kTrilinear, kEightLookups): a function pointer would not be inlined.
+template <class Sample> void samplePoints(benchmark::State& state, const std::vector<glm::dvec3>& pts, Sample sample) {
+  VolumeSampler s(phantom());
+  for (auto _ : state)
+    for (const auto& p : pts) benchmark::DoNotOptimize(sample(s, p));
+  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+}
+constexpr auto kTrilinear = [](const VolumeSampler& s, const glm::dvec3& p) { return s.density(p); };
+
 // Points anywhere in the volume.
 void BM_SampleRandom(benchmark::State& state) {
   const auto& v = phantom();
-  VolumeSampler s(v);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> ux(0, v.dims().x - 1), uy(0, v.dims().y - 1), uz(0, v.dims().z - 1);
   std::vector<glm::dvec3> pts(4096);
   for (auto& p : pts) p = {ux(rng), uy(rng), uz(rng)};
-  for (auto _ : state)
-    for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
-  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+  samplePoints(state, pts, kTrilinear);
 }
 BENCHMARK(BM_SampleRandom);
 
@@ -49,14 +56,7 @@ std::vector<glm::dvec3> nearSurfacePoints(const VoxelVolume& v) {
   return pts;
 }
 
-void BM_SampleNearSurface(benchmark::State& state) {
-  const auto& v = phantom();
-  VolumeSampler s(v);
-  const std::vector<glm::dvec3> pts = nearSurfacePoints(v);
-  for (auto _ : state)
-    for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
-  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
-}
+void BM_SampleNearSurface(benchmark::State& state) { samplePoints(state, nearSurfacePoints(phantom()), kTrilinear); }
 BENCHMARK(BM_SampleNearSurface);
 
 // A trilinear sample as VolumeSampler took it before its leaf fast paths:
@@ -73,15 +73,12 @@ double eightLookups(const VolumeSampler& s, const glm::dvec3& p) {
   return y0 + (y1 - y0) * tz;
 }
 
+constexpr auto kEightLookups = [](const VolumeSampler& s, const glm::dvec3& p) { return eightLookups(s, p); };
+
 // The same points sampled with eight lookups: the ratio to
 // BM_SampleNearSurface is the fast paths' gain.
 void BM_SampleNearSurfaceEightLookups(benchmark::State& state) {
-  const auto& v = phantom();
-  VolumeSampler s(v);
-  const std::vector<glm::dvec3> pts = nearSurfacePoints(v);
-  for (auto _ : state)
-    for (const auto& p : pts) benchmark::DoNotOptimize(eightLookups(s, p));
-  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+  samplePoints(state, nearSurfacePoints(phantom()), kEightLookups);
 }
 BENCHMARK(BM_SampleNearSurfaceEightLookups);
 
@@ -96,22 +93,10 @@ std::vector<glm::dvec3> straddlingPoints(const VoxelVolume& v) {
   }
   return pts;
 }
-void BM_SampleStraddling(benchmark::State& state) {
-  const auto& v = phantom();
-  VolumeSampler s(v);
-  const std::vector<glm::dvec3> pts = straddlingPoints(v);
-  for (auto _ : state)
-    for (const auto& p : pts) benchmark::DoNotOptimize(s.density(p));
-  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
-}
+void BM_SampleStraddling(benchmark::State& state) { samplePoints(state, straddlingPoints(phantom()), kTrilinear); }
 BENCHMARK(BM_SampleStraddling);
 void BM_SampleStraddlingEightLookups(benchmark::State& state) {
-  const auto& v = phantom();
-  VolumeSampler s(v);
-  const std::vector<glm::dvec3> pts = straddlingPoints(v);
-  for (auto _ : state)
-    for (const auto& p : pts) benchmark::DoNotOptimize(eightLookups(s, p));
-  state.SetItemsProcessed(state.iterations() * std::int64_t(pts.size()));
+  samplePoints(state, straddlingPoints(phantom()), kEightLookups);
 }
 BENCHMARK(BM_SampleStraddlingEightLookups);
 

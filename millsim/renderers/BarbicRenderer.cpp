@@ -40,7 +40,11 @@ public:
     // The scene builds the shells on first request: here, on the scene thread, not in step().
     shells_.resize(scene.volumeCount());
     followMilling(scene);
-    for (std::size_t i = 0; i < shells_.size(); ++i) scene.pointShell(i, 2 * p_.scale);
+    for (std::size_t i = 0; i < shells_.size(); ++i) {
+      scene.pointShell(i, 2 * p_.scale);
+      // A shell's bucket grid is fixed: step() never grows this list.
+      candidates_.reserve(std::max(candidates_.capacity(), shells_[i].fine->bucketCount()));
+    }
   }
 
   std::string name() const override { return "BarbicRenderer"; }
@@ -132,9 +136,6 @@ private:
     for (std::size_t i = 0; i < shells_.size(); ++i) {
       shells_[i].placement = &scene.placement(i);
       shells_[i].fine = &scene.pointShell(i, p_.scale);
-      // A shell's bucket grid is fixed: reserved on the first call (the
-      // constructor, on the scene thread), never grown in step().
-      if (candidates_.capacity() < shells_[i].fine->bucketCount()) candidates_.reserve(shells_[i].fine->bucketCount());
     }
   }
 

@@ -228,7 +228,7 @@ private:
         const int first = firstBurr(found, n);
         const PointContact* firstContact = first >= 0 && !t.shaft ? &contacts[first] : nullptr;
         slot = leastPushing(found, contacts, n);
-        if (slot < 0 || !(pushDepth(pc, firstContact) > pushDepth(found, contacts, n, slot))) return false;
+        if (slot < 0 || !(pushDepth(pc, firstContact) > pushDepth(found, contacts, first, slot))) return false;
       } else {
         ++n;
       }
@@ -380,9 +380,8 @@ private:
   static double pushDepth(const PointContact& pc, const PointContact* first) {
     return pc.depth > 0.0 && first ? pc.depth * secondFaceWeight(*first, pc) : pc.depth;
   }
-  // The same for the found contact in `slot`.
-  static double pushDepth(const Track* found, const PointContact* contacts, int n, int slot) {
-    const int first = firstBurr(found, n);
+  // The same for the found contact in `slot`; `first` is firstBurr's answer.
+  static double pushDepth(const Track* found, const PointContact* contacts, int first, int slot) {
     return pushDepth(contacts[slot], found[slot].shaft || slot == first || first < 0 ? nullptr : &contacts[first]);
   }
   // The contact that pushes least when all places are taken, never the
@@ -391,7 +390,8 @@ private:
     const int first = firstBurr(found, n);
     int slot = -1;
     for (int j = 0; j < n; ++j)
-      if (j != first && (slot < 0 || pushDepth(found, contacts, n, j) < pushDepth(found, contacts, n, slot))) slot = j;
+      if (j != first && (slot < 0 || pushDepth(found, contacts, first, j) < pushDepth(found, contacts, first, slot)))
+        slot = j;
     return slot;
   }
 

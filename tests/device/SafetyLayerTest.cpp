@@ -278,28 +278,24 @@ TEST(SafetyLayer, RejectsInvalidLimitsNamingTheValue) {
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
   };
-  for (double bad : {0.0, -1.0, kNaN, kInf}) {
-    SafetyLimits l = noRamp();
-    l.forceLimit = bad;
-    expectThrow(l, "forceLimit");
-    l = noRamp();
-    l.torqueLimit = bad;
-    expectThrow(l, "torqueLimit");
-    l = noRamp();
-    l.watchdogTimeout = bad;
-    expectThrow(l, "watchdogTimeout");
-  }
-  for (double bad : {-0.1, kNaN, kInf}) {
-    SafetyLimits l = noRamp();
-    l.softStartTime = bad;
-    expectThrow(l, "softStartTime");
-    l = noRamp();
-    l.recoveryScale = bad;
-    expectThrow(l, "recoveryScale");
-    l = noRamp();
-    l.deviceHold = bad;
-    expectThrow(l, "deviceHold");
-  }
+  struct Limit {
+    double SafetyLimits::*field;
+    const char* name;
+    bool zeroAllowed;
+  };
+  const Limit limits[] = {{&SafetyLimits::forceLimit, "forceLimit", false},
+                          {&SafetyLimits::torqueLimit, "torqueLimit", false},
+                          {&SafetyLimits::watchdogTimeout, "watchdogTimeout", false},
+                          {&SafetyLimits::recoveryScale, "recoveryScale", false},
+                          {&SafetyLimits::softStartTime, "softStartTime", true},
+                          {&SafetyLimits::deviceHold, "deviceHold", true}};
+  for (const Limit& limit : limits)
+    for (double bad : {0.0, -0.1, -1.0, kNaN, kInf}) {
+      if (bad == 0.0 && limit.zeroAllowed) continue;
+      SafetyLimits l = noRamp();
+      l.*limit.field = bad;
+      expectThrow(l, limit.name);
+    }
   SafetyLimits ok = noRamp();
   ok.softStartTime = 0.0;
   EXPECT_NO_THROW(SafetyLayer{ok});
