@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -50,7 +51,8 @@ void SafetyLayer::setLimits(double forceLimit, double torqueLimit) {
 SafeWrench SafetyLayer::trip(double t, std::uint32_t event, bool full) {
   if (!tripped_) {
     tripped_ = true;
-    interruptedRamp_ = lastOutput_ - rampStart_ < rampLength_;
+    interruptedEnd_ = lastOutput_ - rampStart_ < rampLength_ ? rampStart_ + rampLength_
+                                                             : -std::numeric_limits<double>::infinity();
   }
   fullRamp_ = fullRamp_ || full;
   rampStart_ = t;
@@ -110,7 +112,7 @@ SafeWrench SafetyLayer::filter(const glm::dvec3& force, const glm::dvec3& torque
   }
   if (tripped_) {
     const double soft = limits_.softStartTime;
-    const double kept = interruptedRamp_ ? rampLength_ : 0.0;  // a trip never shortens a ramp under way
+    const double kept = interruptedEnd_ - rampStart_;  // the interrupted ramp's end (header)
     const double outage = t - lastOutput_;
     rampLength_ = fullRamp_ ? soft : std::min(soft, std::max(outage * outage / limits_.recoveryScale, kept));
     tripped_ = fullRamp_ = false;

@@ -19,6 +19,7 @@
 // They are counted as non-finite frames, watchdog trips and hiccups.
 // It runs on the haptic thread: no allocation, no locks.
 #include <cstdint>
+#include <limits>
 
 #include <glm/vec3.hpp>
 
@@ -98,7 +99,10 @@ private:
   bool started_ = false;
   bool tripped_ = false;          // frames without output since lastOutput_
   bool fullRamp_ = false;         // ... one of them asks for the whole soft start
-  bool interruptedRamp_ = false;  // ... and they cut a ramp short
+  // ... and the end of the ramp they cut short (-inf: none). The ramp after
+  // them ends no earlier: a trip never shortens a ramp under way, nor, as a
+  // whole new ramp each time would, makes frequent trips an endless ramp.
+  double interruptedEnd_ = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace millsim

@@ -214,7 +214,8 @@ TEST(SafetyLayer, AStallZeroesTheOutputAndRampsBackTheSoonerTheShorterItWas) {
 }
 
 // The soft start protects a run that starts inside material: a hiccup or a
-// stall during it must not end it early.
+// stall during it must not end it early. The ramp after the stall rises from
+// zero to end when the soft start would have: below the soft start's line.
 TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
   SafetyLimits l = noRamp();
   l.softStartTime = 0.25;
@@ -226,14 +227,38 @@ TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
   EXPECT_EQ(s.filter({0, 0, 2.0}, {}, t, t).force, glm::dvec3(0.0));
   const double tripped = t;
   t += kDt;
-  EXPECT_NEAR(s.filter({0, 0, 2.0}, {}, t, t).force.z, 2.0 * kDt / 0.25, 1e-9) << "a ramp of 4.4 ms, not 250";
+  EXPECT_NEAR(s.filter({0, 0, 2.0}, {}, t, t).force.z, 2.0 * kDt / (0.25 - tripped), 1e-9)
+      << "a ramp to the soft start's end, not of 4.4 ms";
   // A hiccup during the new ramp blends from what was sent towards the ramped
   // wrench: still below the ramp's line, never a step.
   t += 0.007;
-  const double sent = 2.0 * (t - 0.007 - tripped) / 0.25;
+  const double sent = 2.0 * (t - 0.007 - tripped) / (0.25 - tripped);
   const SafeWrench w = s.filter({0, 0, 2.0}, {}, t, t);
   EXPECT_NEAR(w.force.z, sent, 1e-9);
   EXPECT_TRUE(w.events & kSafetyHiccup);
+}
+
+// A loaded host stalls again and again (CI: 92 trips in 5 s). Each stall
+// restarting the whole soft start kept the output ramping all run long, at
+// 55 % of the force at best; the ramps must still end with the soft start.
+TEST(SafetyLayer, StallsOneAfterAnotherDoNotMakeTheSoftStartEndless) {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.25;
+  l.deviceHold = 0.010;
+  SafetyLayer s(l);
+  double t = 0.0;
+  SafeWrench w;
+  for (int stall = 0; stall < 12; ++stall) {  // a 12 ms stall every 40 ms, for 0.48 s
+    for (int i = 0; i < 28; ++i, t += kDt) w = s.filter({0, 0, 2.0}, {}, t, t);
+    t += 0.012 - kDt;
+    EXPECT_EQ(s.filter({0, 0, 2.0}, {}, t, t).force, glm::dvec3(0.0)) << "stall " << stall;
+    t += kDt;
+  }
+  EXPECT_EQ(s.counters().watchdogTrips, 12u);
+  for (int i = 0; i < 28; ++i, t += kDt) w = s.filter({0, 0, 2.0}, {}, t, t);
+  // 28 ms after the last stall the output is whole: its own ramp, 1.7 ms, is long over.
+  EXPECT_NEAR(w.force.z, 2.0, 1e-12);
+  EXPECT_FALSE(w.events & kSafetyRamping);
 }
 
 TEST(SafetyLayer, StaleDeviceSampleTripsTheWatchdog) {
