@@ -13,6 +13,7 @@
 #include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
 #include "millsim/renderers/BarbicSolve.h"
+#include "millsim/renderers/FreeStart.h"
 #include "millsim/renderers/Obb.h"
 #include "millsim/renderers/ToolSdf.h"
 #include "millsim/volume/PointShell.h"
@@ -54,6 +55,7 @@ public:
     lastDevice_ = tool_;
     toolVelocity_.setZero();
     touched_ = false;
+    startFree_ = true;
     cut_.reset(device.position);
   }
 
@@ -67,6 +69,14 @@ public:
     const Pose device{in.device.position, glm::normalize(in.device.orientation)};
     const double dt = in.dt > 1e-6 && std::isfinite(in.dt) ? in.dt : 1e-3;
     followMilling(scene);
+    if (startFree_) {  // the first frame after a reset: out of material along the axis (FreeStart.h)
+      startFree_ = false;
+      const glm::dvec3 axis = tool_.shaftDirection();
+      const double h = scene.voxelSize();
+      const double s = firstFreeAlong([&](double d) { return penetrates({tool_.position + axis * d, tool_.orientation}); },
+                                      h, reach_ + reachTip_, 0.05 * h);
+      if (s > 0.0) tool_.position += axis * s;
+    }
 
     // 1–2. Contacts at the current tool pose, and the coupling spring.
     acc_.clear();
@@ -215,6 +225,22 @@ private:
     return contacts;
   }
 
+  // Whether any shell point is inside the tool at `pose` (the contact test of
+  // gatherContacts, stopping at the first).
+  bool penetrates(const Pose& pose) const {
+    const glm::dmat3 Rt = glm::transpose(glm::mat3_cast(pose.orientation));
+    for (const Shells& s : shells_) {
+      const auto& v = *s.placement;
+      const Obb box = toolBox(v, pose, 0.0);
+      if (s.fine->anyCandidate([&](const Aabb& b) { return box.overlaps(b); }, [&](const ShellPoint& sp) {
+            const glm::dvec3 q = Rt * (glm::dvec3(v.localToWorld * glm::dvec4(glm::dvec3(sp.position), 1.0)) - pose.position);
+            return (p_.sampled ? sdf_.sampledDistance(q) : sdf_.distance(q)) < 0.0;
+          }))
+        return true;
+    }
+    return false;
+  }
+
   // Whether any shell point lies within `margin` of the tool's box.
   bool materialWithin(double margin) const {
     for (const Shells& s : shells_) {
@@ -249,6 +275,7 @@ private:
   Wrench6 acc_;
   Pose tool_, lastDevice_;
   bool touched_ = false;  // the last step had contacts (a step that loses them all is held short)
+  bool startFree_ = true;  // the next step first moves a tool that starts in material out of it
   Vec6 toolVelocity_ = Vec6::Zero();
   CutFront cut_;  // where the burr cuts
 };

@@ -16,6 +16,7 @@
 #include "millsim/haptics/HapticScene.h"
 #include "millsim/renderers/ContactShares.h"
 #include "millsim/renderers/DeepestPoint.h"
+#include "millsim/renderers/FreeStart.h"
 #include "millsim/renderers/ProxyPoint.h"
 
 namespace millsim {
@@ -84,12 +85,14 @@ public:
     shaftContact_ = false;
     shaftLine_ = ShaftLine{};
     lastDrawn_ = device;
+    startFree_ = true;
   }
 
   void carryOver(const HapticAlgorithm& previous) override {
     const auto* p = dynamic_cast<const LineProxyAlgorithm*>(&previous);
     if (!p) return;
     // The proxies stay where they were held; only the parameters change.
+    startFree_ = p->startFree_;
     tip_.takeStateFrom(p->tip_);
     shaft_.takeStateFrom(p->shaft_);
     prevTip_ = p->prevTip_;
@@ -117,6 +120,13 @@ public:
     // so the burr's surface, not its centre, meets the material; the paper's
     // variant holds the centre vertex itself on the surface.
     burr_.bind(scene);
+    if (startFree_) {  // the first frame after a reset: the tip's proxy out of material along the axis (FreeStart.h)
+      startFree_ = false;
+      const double h = scene.voxelSize();
+      auto inside = [&](double d) { return p_.burrSurface ? burr_.value(c + dir * d) > 0.0 : scene.inside(c + dir * d); };
+      const double s = firstFreeAlong(inside, h, p_.tool.shaftLength + p_.tool.tipRadius, 0.05 * h);
+      if (s > 0.0) tip_.reset(c + dir * s);
+    }
     if (p_.burrSurface) tip_.update(burr_, c);
     else tip_.update(scene, c);
     const bool tipContact = tip_.inContact();
@@ -372,6 +382,7 @@ private:
   BurrField burr_;  // the scene dilated by the burr sphere (p_.burrSurface)
   glm::dvec3 prevTip_{0.0};
   bool cutting_ = false;        // the burr cut last frame, at cutCentre_
+  bool startFree_ = true;       // the next step first moves a tip proxy that starts in material out of it
   glm::dvec3 cutCentre_{0.0};
   glm::dvec3 prevDir_{0.0, 1.0, 0.0};
   bool shaftContact_ = false;
