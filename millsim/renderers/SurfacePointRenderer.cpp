@@ -65,6 +65,7 @@ public:
     std::fill(heldSlice_.begin(), heldSlice_.end(), glm::dvec3(0.0));
     tracked_ = 0;
     heldHead_ = PointContact{};
+    fresh_ = true;
   }
 
   void carryOver(const HapticAlgorithm& previous) override {
@@ -79,6 +80,7 @@ public:
     tracked_ = p->tracked_;  // the contacts are geometry: the same whatever k
     std::copy(p->track_, p->track_ + kMaxPointContacts, track_);
     heldHead_ = p->heldHead_;
+    fresh_ = p->fresh_;
   }
 
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
@@ -163,6 +165,7 @@ private:
     out.cutHardness = cut_.hardness();
     sanitize(out, device);
     lastDrawn_ = out.drawnTool;
+    fresh_ = false;
     return out;
   }
 
@@ -262,6 +265,13 @@ private:
         }
       if (t.u == glm::dvec3(0.0) && glm::length(c - cut_.centre()) > 0.0)
         t.u = glm::normalize(c - cut_.centre()), t.normal = -t.u, t.t = 0.0;
+      // The first frame after a reset inside material (a run that starts
+      // there, or a swap mid-press): no line to hold. The burr came in along
+      // its axis, the way it comes out of the hole it is in (FreeStart.h).
+      if (t.u == glm::dvec3(0.0) && fresh_) {
+        const glm::dvec3 axis = R * glm::dvec3(0.0, 1.0, 0.0);
+        t.u = -axis, t.normal = axis, t.t = 0.0;
+      }
       if (t.u != glm::dvec3(0.0)) {
         // No cap on the depth: a force that stopped growing would let the
         // hand push on for free and take more back on the way out.
@@ -551,6 +561,7 @@ private:
   std::vector<char> inside_;  // per surface point: in material on the grown surface (sized at compile)
   Track track_[kMaxPointContacts];
   int tracked_ = 0;
+  bool fresh_ = true;  // no step since the last reset (a burr centre inside then holds along the axis)
   PointContact heldHead_;  // a non-round head's last contact (held while its centre is inside)
   std::vector<double> sliceY_;
   glm::dvec3 heldSphere_{0.0};
