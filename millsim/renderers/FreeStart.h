@@ -15,9 +15,11 @@ namespace millsim {
 // inside(s): whether the tool moved s (m) along the direction is in material.
 // Returns 0 if free already, else an s at which it is free with the tool
 // inside at most `tolerance` less (doubling from `step`, then bisection), or
-// a negative value if it is inside all the way to `reach`.
+// a negative value if it is inside all the way to `reach` (or the lengths
+// are not positive: a scene without volumes has no voxel size).
 template <class Inside> double firstFreeAlong(Inside&& inside, double step, double reach, double tolerance) {
   if (!inside(0.0)) return 0.0;
+  if (!(step > 0.0) || !(reach > 0.0) || !(tolerance > 0.0) || !(reach < 1e3)) return -1.0;
   double lo = 0.0, hi = std::min(step, reach);
   while (inside(hi)) {
     if (hi >= reach) return -1.0;

@@ -19,6 +19,7 @@
 
 #include "measure/Physical.h"
 #include "measure/Renderers.h"
+#include "millsim/renderers/FreeStart.h"
 #include "millsim/renderers/LineProxyRenderer.h"
 #include "millsim/renderers/ProxyPoint.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
@@ -284,6 +285,23 @@ TEST_P(EveryRenderer, ATakeOverInsideMaterialRendersWhatPushingInDoes) {
     EXPECT_LE(ratio, bound(check, 0.05, ratio)) << where << ": " << out.force.y << " N started there, "
                                                  << reference.force.y << " N pushed in";
   }
+}
+
+// FreeStart.h's search: the first free distance to within the tolerance,
+// through a run of material, none when free already, and a clear "none"
+// where the material goes on past the reach or the lengths are not positive.
+TEST(FreeStart, FindsTheFirstFreeDistanceAlongTheWay) {
+  auto slab = [](double from, double to) { return [=](double s) { return s >= from && s < to; }; };
+  EXPECT_EQ(firstFreeAlong(slab(0.3, 0.5), 0.1, 10.0, 1e-3), 0.0) << "free where it starts";
+  const double s = firstFreeAlong(slab(-1.0, 0.737), 0.1, 10.0, 1e-3);
+  EXPECT_GE(s, 0.737);
+  EXPECT_LE(s, 0.737 + 1e-3);
+  EXPECT_LT(firstFreeAlong(slab(-1.0, 20.0), 0.1, 10.0, 1e-3), 0.0) << "inside all the way";
+  EXPECT_LT(firstFreeAlong(slab(-1.0, 0.5), 0.0, 10.0, 1e-3), 0.0) << "a zero step (no voxels)";
+  EXPECT_LT(firstFreeAlong(slab(-1.0, 0.5), 0.1, 10.0, 0.0), 0.0) << "a zero tolerance";
+  int tests = 0;
+  firstFreeAlong([&](double d) { return ++tests, d < 0.55e-3; }, 0.1e-3, 15.6e-3, 0.005e-3);
+  EXPECT_LE(tests, 12) << "a 0.55 mm way out to 0.05 voxel";
 }
 
 // Issue 14's must-hold on a convex surface, over the registry: pressed along
