@@ -85,7 +85,9 @@ struct IsoSurfaceMesher::Extractor {
   vtkNew<vtkFloatArray> scalars;
   vtkNew<vtkFloatArray> gradients;
   vtkNew<vtkFlyingEdges3D> flyingEdges;
-  std::vector<float> padded;  // the chunk's samples plus one more on each side (for gradients)
+  std::vector<float> raw;     // the chunk's samples plus two more on each side
+  std::vector<float> padded;  // ... smoothed 1-2-1 on every axis, one more on each side (for gradients)
+  std::vector<float> passX, passXY;  // the smoothing's separable passes (raw's layout)
   struct Neighbours {
     std::ptrdiff_t minus, plus;  // offsets in `padded`
     float scale;
@@ -198,11 +200,12 @@ void IsoSurfaceMesher::buildAll() {
 
 std::vector<IsoSurfaceMesher::ChunkKey> IsoSurfaceMesher::update(const std::vector<BlockOrigin>& dirtyLeafOrigins) {
   // A changed voxel moves the cells on both sides of it and, through the
-  // central-difference gradient, the normals one sample further: pad 1.
+  // smoothed samples' central-difference gradient, the normals two samples
+  // further: pad 2.
   std::map<ChunkKey, char, KeyLess> dirty;
   for (const BlockOrigin& o : dirtyLeafOrigins) {
     int f[3], l[3];
-    for (int a = 0; a < 3; ++a) chunkRange(o[a], o[a] + int(Leaf::DIM) - 1, chunkSize_, 1, chunkGrid_[a], f[a], l[a]);
+    for (int a = 0; a < 3; ++a) chunkRange(o[a], o[a] + int(Leaf::DIM) - 1, chunkSize_, 2, chunkGrid_[a], f[a], l[a]);
     for (int z = f[2]; z <= l[2]; ++z)
       for (int y = f[1]; y <= l[1]; ++y)
         for (int x = f[0]; x <= l[0]; ++x) dirty.emplace(ChunkKey(x, y, z), 0);
@@ -220,14 +223,16 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
   const glm::ivec3 lo = key * chunkSize_;
   const glm::ivec3 hi = glm::min(lo + chunkSize_, dims - 1);
   const glm::ivec3 p0 = glm::max(lo - 1, glm::ivec3(0)), p1 = glm::min(hi + 1, dims - 1);
-  const glm::ivec3 n = hi - lo + 1, pn = p1 - p0 + 1;
+  const glm::ivec3 q0 = glm::max(lo - 2, glm::ivec3(0)), q1 = glm::min(hi + 2, dims - 1);
+  const glm::ivec3 n = hi - lo + 1, pn = p1 - p0 + 1, qn = q1 - q0 + 1;
 
-  ex.padded.resize(std::size_t(pn.x) * pn.y * pn.z);
-  gather(*ex.accessor, Coord(p0.x, p0.y, p0.z), Coord(p1.x, p1.y, p1.z), ex.padded.data());
+  ex.raw.resize(std::size_t(qn.x) * qn.y * qn.z);
+  gather(*ex.accessor, Coord(q0.x, q0.y, q0.z), Coord(q1.x, q1.y, q1.z), ex.raw.data());
+  const std::ptrdiff_t rawStride[3] = {1, qn.x, std::ptrdiff_t(qn.x) * qn.y};
   const std::ptrdiff_t stride[3] = {1, pn.x, std::ptrdiff_t(pn.x) * pn.y};
-  // The padded sample at the chunk's voxel (lo.x, y, z).
+  // The raw sample at the chunk's voxel (lo.x, y, z).
   auto row = [&](int y, int z) {
-    return ex.padded.data() + (z - p0.z) * stride[2] + (y - p0.y) * stride[1] + (lo.x - p0.x);
+    return ex.raw.data() + (z - q0.z) * rawStride[2] + (y - q0.y) * rawStride[1] + (lo.x - q0.x);
   };
 
   // The chunk's own samples for VTK, and whether any cell is cut at all
@@ -250,6 +255,53 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
   if (!cut) {
     if (chunks_.erase(key) && changed) changed->push_back(key);
     return;
+  }
+
+  // The samples the gradient is taken of: the raw ones smoothed 1-2-1 along
+  // each axis (neighbours clamped at the volume's faces), over the padded box.
+  // The phantom's surface is a one-voxel density ramp; a Sobel gradient of it
+  // still leans with the sub-voxel phase where the surface crosses the
+  // samples, and shaded one ring per voxel on the crown's gentle slopes
+  // (docs/images/screens). The smoothing widens the ramp the gradient sees to
+  // about three voxels; the mesh itself is the raw samples' iso-surface.
+  {
+    const std::size_t all = ex.raw.size();
+    ex.passX.resize(all), ex.passXY.resize(all);
+    auto rawAt = [&](int x, int y, int z) {
+      return std::size_t(z - q0.z) * std::size_t(rawStride[2]) + std::size_t(y - q0.y) * std::size_t(rawStride[1]) +
+             std::size_t(x - q0.x);
+    };
+    // out = in[-1] + 2 in + in[+1] along `axis`, over [from, to] (volume indices, raw's layout).
+    auto pass = [&](const float* in, float* out, int axis, glm::ivec3 from, glm::ivec3 to) {
+      for (int z = from.z; z <= to.z; ++z)
+        for (int y = from.y; y <= to.y; ++y) {
+          const glm::ivec3 c(from.x, y, z);
+          const std::size_t r = rawAt(from.x, y, z);
+          if (axis == 0) {
+            for (int x = from.x; x <= to.x; ++x) {
+              const std::size_t i = r + std::size_t(x - from.x);
+              const std::ptrdiff_t m = x > 0 ? -1 : 0, pl = x < dims.x - 1 ? 1 : 0;
+              out[i] = in[i + m] + 2.f * in[i] + in[i + pl];
+            }
+          } else {
+            const std::ptrdiff_t m = c[axis] > 0 ? -rawStride[axis] : 0, pl = c[axis] < dims[axis] - 1 ? rawStride[axis] : 0;
+            for (int x = 0; x <= to.x - from.x; ++x) {
+              const std::size_t i = r + std::size_t(x);
+              out[i] = in[i + m] + 2.f * in[i] + in[i + pl];
+            }
+          }
+        }
+    };
+    pass(ex.raw.data(), ex.passX.data(), 0, {p0.x, q0.y, q0.z}, {p1.x, q1.y, q1.z});
+    pass(ex.passX.data(), ex.passXY.data(), 1, {p0.x, p0.y, q0.z}, {p1.x, p1.y, q1.z});
+    pass(ex.passXY.data(), ex.passX.data(), 2, p0, p1);  // passX is free again: the result
+    ex.padded.resize(std::size_t(pn.x) * pn.y * pn.z);
+    float* smoothed = ex.padded.data();
+    for (int z = p0.z; z <= p1.z; ++z)
+      for (int y = p0.y; y <= p1.y; ++y) {
+        const float* src = ex.passX.data() + rawAt(p0.x, y, z);
+        for (int x = 0; x < pn.x; ++x) *smoothed++ = src[x] * (1.f / 64.f);
+      }
   }
 
   // Gradient per voxel (density per voxel): central differences, one-sided

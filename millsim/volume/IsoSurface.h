@@ -17,8 +17,9 @@
 // (watertight). Normals are not VTK's per-chunk normals, which use one-sided
 // differences at the chunk's faces and would shade a visible 16-voxel grid;
 // they are Sobel gradients (each central difference averaged 1-2-1 over the
-// two other axes) read across chunk borders, so a voxel change dirties the
-// chunks within one sample of it, not only those whose cells contain it.
+// two other axes) of the samples smoothed 1-2-1 along every axis, read across
+// chunk borders, so a voxel change dirties the chunks within two samples of
+// it, not only those whose cells contain it.
 //
 // Threads: not thread-safe. buildAll() and update() read the volume's grid on
 // the calling thread, and nothing may write those voxels meanwhile — which is
