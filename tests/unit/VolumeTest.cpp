@@ -1,6 +1,7 @@
 // VoxelVolume, trilinear sampling, the tooth phantom, milling and the point shell.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -100,6 +101,38 @@ TEST(VolumeSampler, GradientPointsIntoABall) {
     EXPECT_GT(glm::dot(g, -dir), 0.98);  // density grows inwards
   }
   EXPECT_EQ(s.density({-50, 0, 0}), 0.f);  // outside the volume: air
+}
+
+// The sampler keeps the buffers of the leaves it read last (VolumeSampler.h):
+// after milling has changed voxels in place and turned dense tiles into
+// leaves, it reads exactly what a new sampler reads.
+TEST(VolumeSampler, ReadsWhatMillingWroteAfterCachingTheLeaves) {
+  const int n = 40;
+  // Material below y = 20 (dense 8³ blocks there are tiles), air above.
+  auto v = makeVolume({n, n, n}, 1e-3, 0.f, [](int, int j, int) { return j < 20 ? 1.f : 0.f; });
+  v.grid().tree().prune();  // uniform blocks become tiles, as a loaded CT's do
+  ASSERT_LT(v.grid().tree().leafCount(), 5u * 5u * 3u) << "the material's inner blocks are tiles";
+  VolumeSampler kept(v);
+  std::vector<glm::dvec3> points;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(8.0, 31.0);
+  for (int i = 0; i < 400; ++i) points.push_back({u(rng), u(rng), u(rng)});
+  const glm::dvec3 centres[] = {glm::dvec3(20, 19, 20), glm::dvec3(12.3, 14.4, 26.2), glm::dvec3(26.6, 10.2, 13.4)};
+  // Last, the cells around each stamp: their leaves (and tiles) are the ones the sampler holds when milling starts.
+  for (const glm::dvec3& c : centres)
+    for (double d : {-1.6, -0.4, 0.7, 1.9}) points.push_back(c + glm::dvec3(d, 0.3 * d, -0.2 * d));
+  for (const glm::dvec3& p : points) (void)kept.density(p);
+  Miller miller(v, 0.5f);
+  DirtyBlocks dirty(v.dims());
+  for (const glm::dvec3& c : centres) ASSERT_GT(miller.stamp(v.indexToLocal(c), 5e-3, dirty).voxelsChanged, 0);
+  std::reverse(points.begin(), points.end());  // the stamps' cells first, before anything else evicts them
+  VolumeSampler fresh(v);
+  int changed = 0;
+  for (const glm::dvec3& p : points) {
+    EXPECT_EQ(kept.density(p), fresh.density(p)) << p.x << " " << p.y << " " << p.z;
+    changed += fresh.density(p) < 1.f && p.y < 18.0;
+  }
+  EXPECT_GT(changed, 20) << "the stamps reached many of the points";
 }
 
 TEST(ToothPhantom, IsDeterministic) {
