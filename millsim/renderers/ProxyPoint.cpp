@@ -170,9 +170,10 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
   glm::dvec3 entry;
   if (!inContact_) {
     if (field.value(proxy_) > 0.0) {
-      // The probe was never seen outside (a run that starts inside material):
-      // there is no surface to hold it to, so follow it without force rather
-      // than throw the hand out of the material.
+      // The proxy was never outside: there is no surface to hold it to, so
+      // follow the probe without force. (A renderer that starts its tool in
+      // material puts the proxy out first, where it wants a force: #1's tip,
+      // FreeStart.h.)
       proxy_ = probe;
       return proxy_;
     }
