@@ -189,8 +189,14 @@ def stall(millsim, scene, out):
     proc, window, log = start(millsim, scene, out, "--duration", "4", env={"MILLSIM_TEST_STALL_WINDOW_MS": "400"})
     output = finish(proc)
     rows = read_log(log)
-    check(len(rows) >= 0.8 * 4000,
-          f"with the window stalled 400 ms per frame the haptic loop still ran {len(rows)} of 4000 frames")
+    # Never a haptic gap near the window's 400 ms: a loaded host stalls the
+    # loop for 10-30 ms (CI: 29 % of deadlines missed), so a frame count says
+    # more about the host than about the window, and one 400 ms block would
+    # still leave 90 % of the frames.
+    longest = max(float(r["period_us"]) for r in rows[1:]) / 1e3 if len(rows) > 1 else float("inf")
+    check(len(rows) >= 0.5 * 4000 and longest < 100.0,
+          f"with the window stalled 400 ms per frame the haptic loop still ran {len(rows)} of 4000 frames, "
+          f"the longest period {longest:.1f} ms")
     window_frames = [l for l in output.splitlines() if l.strip().startswith("window:")]
     check(bool(window_frames) and int(window_frames[0].split()[1]) <= 15,
           f"and the window really was stalled ({window_frames[0].strip() if window_frames else 'no window line'})")
