@@ -152,7 +152,7 @@ def swap(millsim, scene, out):
     if not enough:
         return
     jump = np.linalg.norm(force[after[clean[after]]].mean(axis=0) - force[before[clean[before]]].mean(axis=0))
-    usual = steps[first - 500:first - 1][pair[first - 500:first - 1]].max()
+    usual = np.max(steps[first - 500:first - 1][pair[first - 500:first - 1]], initial=0.0)
     fade = steps[window][pair[window]].max()
     check(jump > 0.2, f"the two renderers' forces differ ({jump:.3f} N), so the swap is a real test")
     # A 100-frame linear cross-fade spreads the jump over 100 steps; allow 10.
