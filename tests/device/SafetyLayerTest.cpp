@@ -26,6 +26,14 @@ SafetyLimits noRamp() {
   return l;
 }
 
+// The defaults' soft start and ARES's 10 ms hold.
+SafetyLimits aresLike() {
+  SafetyLimits l = noRamp();
+  l.softStartTime = 0.25;
+  l.deviceHold = 0.010;
+  return l;
+}
+
 }  // namespace
 
 TEST(SafetyLayer, PassesSmallWrenchesUnchanged) {
@@ -191,10 +199,7 @@ TEST(SafetyLayer, WithoutAKnownDeviceHoldALateFrameIsZeroed) {
 // squared over recoveryScale (0.1 s), and never over more than the soft start.
 TEST(SafetyLayer, AStallZeroesTheOutputAndRampsBackTheSoonerTheShorterItWas) {
   for (const double stall : {0.020, 0.100}) {
-    SafetyLimits l = noRamp();
-    l.softStartTime = 0.25;
-    l.deviceHold = 0.010;
-    SafetyLayer s(l);
+    SafetyLayer s(aresLike());
     double t = 0.0;
     for (int i = 0; i < 300; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);  // the soft start is over
     t += stall - kDt;
@@ -217,10 +222,7 @@ TEST(SafetyLayer, AStallZeroesTheOutputAndRampsBackTheSoonerTheShorterItWas) {
 // stall during it must not end it early. The ramp after the stall rises from
 // zero to end when the soft start would have: below the soft start's line.
 TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
-  SafetyLimits l = noRamp();
-  l.softStartTime = 0.25;
-  l.deviceHold = 0.010;
-  SafetyLayer s(l);
+  SafetyLayer s(aresLike());
   double t = 0.0;
   for (int i = 0; i < 50; ++i, t += kDt) s.filter({0, 0, 2.0}, {}, t, t);
   t += 0.020 - kDt;
@@ -242,10 +244,7 @@ TEST(SafetyLayer, AStallDuringTheSoftStartDoesNotShortenIt) {
 // restarting the whole soft start kept the output ramping all run long, at
 // 55 % of the force at best; the ramps must still end with the soft start.
 TEST(SafetyLayer, StallsOneAfterAnotherDoNotMakeTheSoftStartEndless) {
-  SafetyLimits l = noRamp();
-  l.softStartTime = 0.25;
-  l.deviceHold = 0.010;
-  SafetyLayer s(l);
+  SafetyLayer s(aresLike());
   double t = 0.0;
   SafeWrench w;
   for (int stall = 0; stall < 12; ++stall) {  // a 12 ms stall every 40 ms, for 0.48 s
