@@ -76,6 +76,33 @@ void gather(const Grid::ConstAccessor& acc, const Coord& b0, const Coord& b1, fl
       }
 }
 
+// out = in[-1] + 2 in + in[+1] along `axis`, over the volume-index box
+// [from, to]; `in` and `out` are laid out alike over a box starting at volume
+// index `origin` with `stride`. A neighbour past the volume's face is the
+// sample itself (clamped, as VTK's one-sided differences there).
+void smooth121(const float* in, float* out, int axis, glm::ivec3 from, glm::ivec3 to, glm::ivec3 origin,
+               const std::ptrdiff_t (&stride)[3], glm::ivec3 dims) {
+  for (int z = from.z; z <= to.z; ++z)
+    for (int y = from.y; y <= to.y; ++y) {
+      const std::size_t r = std::size_t(z - origin.z) * std::size_t(stride[2]) +
+                            std::size_t(y - origin.y) * std::size_t(stride[1]) + std::size_t(from.x - origin.x);
+      if (axis == 0) {
+        for (int x = from.x; x <= to.x; ++x) {
+          const std::size_t i = r + std::size_t(x - from.x);
+          const std::ptrdiff_t m = x > 0 ? -1 : 0, p = x < dims.x - 1 ? 1 : 0;
+          out[i] = in[i + m] + 2.f * in[i] + in[i + p];
+        }
+      } else {
+        const int v = axis == 1 ? y : z;
+        const std::ptrdiff_t m = v > 0 ? -stride[axis] : 0, p = v < dims[axis] - 1 ? stride[axis] : 0;
+        for (int x = 0; x <= to.x - from.x; ++x) {
+          const std::size_t i = r + std::size_t(x);
+          out[i] = in[i + m] + 2.f * in[i] + in[i + p];
+        }
+      }
+    }
+}
+
 }  // namespace
 
 // One VTK pipeline, reused for every chunk, so that a chunk pays only for its
@@ -271,30 +298,9 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
       return std::size_t(z - q0.z) * std::size_t(rawStride[2]) + std::size_t(y - q0.y) * std::size_t(rawStride[1]) +
              std::size_t(x - q0.x);
     };
-    // out = in[-1] + 2 in + in[+1] along `axis`, over [from, to] (volume indices, raw's layout).
-    auto pass = [&](const float* in, float* out, int axis, glm::ivec3 from, glm::ivec3 to) {
-      for (int z = from.z; z <= to.z; ++z)
-        for (int y = from.y; y <= to.y; ++y) {
-          const glm::ivec3 c(from.x, y, z);
-          const std::size_t r = rawAt(from.x, y, z);
-          if (axis == 0) {
-            for (int x = from.x; x <= to.x; ++x) {
-              const std::size_t i = r + std::size_t(x - from.x);
-              const std::ptrdiff_t m = x > 0 ? -1 : 0, pl = x < dims.x - 1 ? 1 : 0;
-              out[i] = in[i + m] + 2.f * in[i] + in[i + pl];
-            }
-          } else {
-            const std::ptrdiff_t m = c[axis] > 0 ? -rawStride[axis] : 0, pl = c[axis] < dims[axis] - 1 ? rawStride[axis] : 0;
-            for (int x = 0; x <= to.x - from.x; ++x) {
-              const std::size_t i = r + std::size_t(x);
-              out[i] = in[i + m] + 2.f * in[i] + in[i + pl];
-            }
-          }
-        }
-    };
-    pass(ex.raw.data(), ex.passX.data(), 0, {p0.x, q0.y, q0.z}, {p1.x, q1.y, q1.z});
-    pass(ex.passX.data(), ex.passXY.data(), 1, {p0.x, p0.y, q0.z}, {p1.x, p1.y, q1.z});
-    pass(ex.passXY.data(), ex.passX.data(), 2, p0, p1);  // passX is free again: the result
+    smooth121(ex.raw.data(), ex.passX.data(), 0, {p0.x, q0.y, q0.z}, {p1.x, q1.y, q1.z}, q0, rawStride, dims);
+    smooth121(ex.passX.data(), ex.passXY.data(), 1, {p0.x, p0.y, q0.z}, {p1.x, p1.y, q1.z}, q0, rawStride, dims);
+    smooth121(ex.passXY.data(), ex.passX.data(), 2, p0, p1, q0, rawStride, dims);  // passX is free again: the result
     ex.padded.resize(std::size_t(pn.x) * pn.y * pn.z);
     float* smoothed = ex.padded.data();
     for (int z = p0.z; z <= p1.z; ++z)
@@ -319,8 +325,8 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
   // the two other axes. The central difference alone, over the phantom's
   // one-voxel density ramp, leans towards the grid's axes by where the
   // surface crosses the voxel, and shades terraces on smooth slopes. The
-  // neighbours are the central difference's (clamped at the volume's faces),
-  // so the padding and the dirty reach stay one sample. Computed separably —
+  // neighbours are the central difference's (clamped at the volume's faces):
+  // one sample beyond the smoothed samples' own, so two in all. Computed separably —
   // smoothed copies of the padded samples, then differences — at about a
   // third of the reads of the 3 × 9 taps.
   const std::size_t box = ex.padded.size();
@@ -329,24 +335,8 @@ void IsoSurfaceMesher::extract(const ChunkKey& key, std::vector<ChunkKey>* chang
   auto at = [&](int x, int y, int z) {
     return std::size_t(z - p0.z) * std::size_t(stride[2]) + std::size_t(y - p0.y) * std::size_t(stride[1]) + std::size_t(x - p0.x);
   };
-  // out = in[-1] + 2 in + in[+1] along `axis`, over [from, to] (volume
-  // indices; `axis` within the chunk, where the stencil has its neighbours).
   auto smooth = [&](const float* in, float* out, int axis, glm::ivec3 from, glm::ivec3 to) {
-    const auto* st = ex.stencil[axis].data();
-    for (int z = from.z; z <= to.z; ++z)
-      for (int y = from.y; y <= to.y; ++y) {
-        const std::size_t r = at(from.x, y, z);
-        if (axis == 0) {
-          for (int x = 0; x <= to.x - from.x; ++x) {
-            const auto& s = st[from.x + x - lo.x];
-            out[r + std::size_t(x)] = in[r + std::size_t(x) + s.minus] + 2.f * in[r + std::size_t(x)] + in[r + std::size_t(x) + s.plus];
-          }
-        } else {
-          const auto& s = st[(axis == 1 ? y : z) - lo[axis]];
-          for (int x = 0; x <= to.x - from.x; ++x)
-            out[r + std::size_t(x)] = in[r + std::size_t(x) + s.minus] + 2.f * in[r + std::size_t(x)] + in[r + std::size_t(x) + s.plus];
-        }
-      }
+    smooth121(in, out, axis, from, to, p0, stride, dims);
   };
   auto span = [&](int axis0, int axis1) {  // chunk range on the two axes, padded range on the third
     glm::ivec3 from = p0, to = p1;
