@@ -15,10 +15,14 @@
 
 namespace millsim {
 
+// A route owns both its nodes: one that the graph no longer holds (a later
+// DEF of the same name took the name, or its parent refused it) is still
+// routed, and its fields must outlive the route (the fuzzer found the
+// Scene unrouting a freed node's field).
 struct RouteRecord {
-  Node* fromNode;
+  std::shared_ptr<Node> fromNode;
   Field* fromField;
-  Node* toNode;
+  std::shared_ptr<Node> toNode;
   Field* toField;
   SourceLocation where;
 };

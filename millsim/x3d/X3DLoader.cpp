@@ -633,7 +633,7 @@ private:
     for (Field* from : endFields[0])
       for (Field* to : endFields[1]) try {
           from->routeTo(*to);
-          scene_->routes.push_back({from->owner(), from, to->owner(), to, loc});
+          scene_->routes.push_back({from->owner()->shared_from_this(), from, to->owner()->shared_from_this(), to, loc});
         } catch (const RouteError& e) {
           sink_.error(loc, "cannot ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + ": " + e.what());
           return;

@@ -91,6 +91,21 @@ TEST(Loader, RoutesAreMadeAndTypeChecked) {
   EXPECT_NE(firstError(bad).message.find("SFVec3f cannot be routed to SFRotation"), std::string::npos);
 }
 
+// A routed node that the graph does not hold (its MetadataSet parent refuses
+// a BooleanToggle) and whose DEF name a later node takes: the route keeps it
+// alive, so the loader's cleanup of the failed scene unroutes a live field.
+// The fuzzer found it freed first (a heap-use-after-free); this test is the
+// ASan stage's (the release build shows only the error).
+TEST(Loader, ARouteKeepsANodeWhoseDefNameALaterNodeTook) {
+  auto r = load(x3d(R"(<Shape><MetadataSet name="m"><BooleanToggle DEF="Hidden"/></MetadataSet></Shape>
+<BooleanFilter DEF="Down"/>
+<ROUTE fromNode="Down" fromField="inputTrue" toNode="Hidden" toField="set_boolean"/>
+<BooleanToggle DEF="Hidden"/>)"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(firstError(r).message.find("BooleanToggle cannot be a child of MetadataSet"), std::string::npos)
+      << r.report();
+}
+
 TEST(Loader, ErrorsNameFileLineColumnValueAndExpectation) {
   auto r = load(x3d("<Transform\n   translation=\"1 2\"/>"));
   ASSERT_FALSE(r.ok());
