@@ -348,8 +348,8 @@ private:
     // opposite rim, its shares grow many times the depths and every ripple of
     // the contacts' normals came through as a jolt (1.4 N frame to frame in
     // the §8.2 lean).
-    glm::dvec3 normals[kMaxPointContacts];
-    double depths[kMaxPointContacts], shares[kMaxPointContacts];
+    glm::dvec3 normals[kMaxPointContacts]{};  // zeroed: GCC cannot see that only the first n are read
+    double depths[kMaxPointContacts]{}, shares[kMaxPointContacts];
     out.contacts = 0;
     const PointContact* burr = nullptr;  // the burr's first contact, touching or near
     for (int j = 0; j < n; ++j) {
