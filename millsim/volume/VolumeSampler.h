@@ -4,6 +4,7 @@
 // sampler per thread (accessors are not shared). Outside the volume the value
 // is air.
 #include <cmath>
+#include <limits>
 
 #include <glm/vec3.hpp>
 
@@ -13,7 +14,8 @@ namespace millsim {
 
 class VolumeSampler {
 public:
-  explicit VolumeSampler(const VoxelVolume& volume) : acc_(volume.grid().getConstAccessor()) {}
+  explicit VolumeSampler(const VoxelVolume& volume)
+      : acc_(volume.grid().getConstAccessor()), air_(volume.airValue()) {}
 
   // Trilinear density at an index-space point (voxel centres at integers).
   float density(const glm::dvec3& p) const {
@@ -21,7 +23,19 @@ public:
     const int i = static_cast<int>(fx), j = static_cast<int>(fy), k = static_cast<int>(fz);
     const double tx = p.x - fx, ty = p.y - fy, tz = p.z - fz;
     float c[8];
-    corners(i, j, k, c);
+    // When the cell lies inside one 8³ leaf (343 of its 512 cells) whose
+    // buffer is kept: eight reads from it (offset = x·64 + y·8 + z) instead of
+    // eight accessor lookups, 1.3x faster near a surface (bench/
+    // VolumeBench.cpp, BM_SampleNearSurface against ...EightLookups).
+    const CachedLeaf& e = cache_[slot(i >> 3, j >> 3, k >> 3)];
+    if ((i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7 && e.data && e.i == i >> 3 && e.j == j >> 3 && e.k == k >> 3) {
+      const int o = ((i & 7) << 6) + ((j & 7) << 3) + (k & 7);
+      const float* d = e.data;
+      c[0] = d[o], c[1] = d[o + 64], c[2] = d[o + 8], c[3] = d[o + 72];
+      c[4] = d[o + 1], c[5] = d[o + 65], c[6] = d[o + 9], c[7] = d[o + 73];
+    } else {
+      corners(i, j, k, c);
+    }
     const double x00 = c[0] + (c[1] - c[0]) * tx, x10 = c[2] + (c[3] - c[2]) * tx;
     const double x01 = c[4] + (c[5] - c[4]) * tx, x11 = c[6] + (c[7] - c[6]) * tx;
     const double y0 = x00 + (x10 - x00) * ty, y1 = x01 + (x11 - x01) * ty;
@@ -45,59 +59,90 @@ private:
   // span up to 3 per axis) never evict each other. The accessor caches one
   // leaf: the burr's samples hopping between the leaves around it missed it,
   // walked down from its cached internal node, and LeafBuffer::data() is an
-  // out-of-line call. Only leaves are kept, never "no leaf here": milling
-  // turns a dense tile into a leaf but never removes a leaf, and writes
-  // values in place, so a kept buffer stays the leaf's. Callgrind over the
-  // §8.2 replay, the frames' instructions: #2 -8.7 % (an 8-slot hashed table:
-  // -7.9 %; #1 with it -7.7 %), #3 unchanged; logs byte-identical.
+  // out-of-line call. Milling turns a dense tile into a leaf but never removes
+  // a leaf, and writes values in place, so a kept buffer stays the leaf's.
+  // Callgrind over the §8.2 replay, the frames' instructions: #2 -8.7 % (an
+  // 8-slot hashed table: -7.9 %; #1 with it -7.7 %), #3 unchanged; logs
+  // byte-identical.
+  //
+  // Where there is no leaf and the tile is air, that is kept too: milling
+  // never writes air (Miller skips it, and a replica only receives what
+  // milling wrote), so an air tile stays one; samples in the air above the
+  // tooth probed the tree for every corner. A material tile (a pruned CT's
+  // interior) may become a leaf, and is read through the accessor each time.
+  // With the straddling cells' corners written out (corners() below), a
+  // sample in #1's frames of the §8.2 replay went from 425 instructions to
+  // about 230: callgrind over the frames, #1 15.72 → 11.43 G instructions
+  // (−27 %), #2 15.02 → 11.28 G (−25 %); logs byte-identical.
   static constexpr int kLeafCache = 64;
-  const float* leafData(int i, int j, int k) const {
-    const int li = i >> 3, lj = j >> 3, lk = k >> 3;
-    CachedLeaf& e = cache_[(li & 3) | (lj & 3) << 2 | (lk & 3) << 4];
-    if (e.data && e.i == li && e.j == lj && e.k == lk) return e.data;
-    const auto* leaf = acc_.probeConstLeaf(openvdb::Coord(i, j, k));
-    if (!leaf) return nullptr;
-    e = {li, lj, lk, leaf->buffer().data()};
-    return e.data;
+  struct CachedLeaf {
+    static constexpr int kNone = std::numeric_limits<int>::min();  // no voxel's leaf: i >> 3 > kNone
+    int i = kNone, j = kNone, k = kNone;  // leaf origin / 8
+    const float* data = nullptr;          // the leaf's values, or null: an air tile of value `value`
+    float value = 0.f;
+  };
+  static int slot(int li, int lj, int lk) { return (li & 3) | (lj & 3) << 2 | (lk & 3) << 4; }
+  // The leaf or air tile holding leaf (li, lj, lk) (voxel / 8); null for a
+  // material tile. The hit is inline; the miss, a walk down the tree, is not.
+  const CachedLeaf* block(int li, int lj, int lk) const {
+    const CachedLeaf& e = cache_[slot(li, lj, lk)];
+    if (e.i == li && e.j == lj && e.k == lk) return &e;
+    return fill(li, lj, lk);
   }
+  [[gnu::noinline]] const CachedLeaf* fill(int li, int lj, int lk) const {
+    CachedLeaf& e = cache_[slot(li, lj, lk)];
+    const openvdb::Coord origin(li * 8, lj * 8, lk * 8);
+    if (const auto* leaf = acc_.probeConstLeaf(origin)) {
+      e = {li, lj, lk, leaf->buffer().data(), 0.f};
+      return &e;
+    }
+    const float tile = acc_.getValue(origin);
+    if (!(tile <= air_)) return nullptr;
+    e = {li, lj, lk, nullptr, tile};
+    return &e;
+  }
+  [[gnu::noinline]] float materialTile(int i, int j, int k) const { return acc_.getValue(openvdb::Coord(i, j, k)); }
 
-  void corners(int i, int j, int k, float* c) const {
-    // When the cell lies inside one 8³ leaf (343 of its 512 cells), one cached
-    // leaf lookup and eight reads from its buffer (offset = x·64 + y·8 + z)
-    // instead of eight accessor lookups: 1.3x faster near a surface
-    // (bench/VolumeBench.cpp, BM_SampleNearSurface against ...EightLookups).
-    if ((i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7) {
-      if (const float* d = leafData(i, j, k)) {
-        const auto o = VoxelVolume::Grid::TreeType::LeafNodeType::coordToOffset(openvdb::Coord(i, j, k));
-        c[0] = d[o], c[1] = d[o + 64], c[2] = d[o + 8], c[3] = d[o + 72];
-        c[4] = d[o + 1], c[5] = d[o + 65], c[6] = d[o + 9], c[7] = d[o + 73];
-        return;
-      }
-    }
-    // The cell straddles two to eight leaves: one probe per leaf, not one
-    // accessor lookup per corner (the accessor caches one leaf, so corners
-    // alternating between two leaves missed it every time).
-    const bool sx = (i & 7) == 7, sy = (j & 7) == 7, sz = (k & 7) == 7;
-    const float* data[8] = {};
-    bool probed[8] = {};
-    for (int n = 0; n < 8; ++n) {
-      const int di = n & 1, dj = (n >> 1) & 1, dk = n >> 2;
-      const openvdb::Coord corner(i + di, j + dj, k + dk);
-      const int key = (sx ? di : 0) | (sy ? dj << 1 : 0) | (sz ? dk << 2 : 0);
-      if (!probed[key]) {
-        probed[key] = true;
-        data[key] = leafData(corner.x(), corner.y(), corner.z());
-      }
-      c[n] = data[key] ? data[key][VoxelVolume::Grid::TreeType::LeafNodeType::coordToOffset(corner)]
-                       : acc_.getValue(corner);  // a tile or the background
-    }
+  // Every other cell (out of line, so that the common one above keeps its
+  // registers): a leaf not kept yet, an air tile, or a cell straddling two to
+  // eight leaves (a third of all cells, half of the burr's in the §8.2
+  // replay), read through the kept blocks rather than one accessor lookup per
+  // corner (the accessor caches one leaf, so corners alternating between two
+  // leaves missed it every time).
+  [[gnu::noinline]] void corners(int i, int j, int k, float* c) const {
+    const int li0 = i >> 3, li1 = (i + 1) >> 3, lj0 = j >> 3, lj1 = (j + 1) >> 3, lk0 = k >> 3, lk1 = (k + 1) >> 3;
+    // The eight corners' blocks; corners in one leaf share its lookup. (A
+    // loop over the corners with the blocks in arrays cost 480 instructions
+    // a cell; written out, about 100.)
+    const bool si = li1 != li0, sj = lj1 != lj0, sk = lk1 != lk0;
+    const CachedLeaf* b000 = block(li0, lj0, lk0);
+    const CachedLeaf* b100 = si ? block(li1, lj0, lk0) : b000;
+    const CachedLeaf* b010 = sj ? block(li0, lj1, lk0) : b000;
+    const CachedLeaf* b110 = !sj ? b100 : !si ? b010 : block(li1, lj1, lk0);
+    const CachedLeaf* b001 = sk ? block(li0, lj0, lk1) : b000;
+    const CachedLeaf* b101 = !sk ? b100 : !si ? b001 : block(li1, lj0, lk1);
+    const CachedLeaf* b011 = !sk ? b010 : !sj ? b001 : block(li0, lj1, lk1);
+    const CachedLeaf* b111 = !sk ? b110 : !sj ? b101 : !si ? b011 : block(li1, lj1, lk1);
+    const int oi0 = (i & 7) << 6, oi1 = ((i + 1) & 7) << 6, oj0 = (j & 7) << 3, oj1 = ((j + 1) & 7) << 3;
+    const int ok0 = k & 7, ok1 = (k + 1) & 7;
+    c[0] = read(b000, oi0 + oj0 + ok0, i, j, k);
+    c[1] = read(b100, oi1 + oj0 + ok0, i + 1, j, k);
+    c[2] = read(b010, oi0 + oj1 + ok0, i, j + 1, k);
+    c[3] = read(b110, oi1 + oj1 + ok0, i + 1, j + 1, k);
+    c[4] = read(b001, oi0 + oj0 + ok1, i, j, k + 1);
+    c[5] = read(b101, oi1 + oj0 + ok1, i + 1, j, k + 1);
+    c[6] = read(b011, oi0 + oj1 + ok1, i, j + 1, k + 1);
+    c[7] = read(b111, oi1 + oj1 + ok1, i + 1, j + 1, k + 1);
+  }
+  // Voxel (i, j, k) at `offset` in its block: a kept leaf's value, an air
+  // tile's, or a material tile's through the accessor.
+  float read(const CachedLeaf* b, int offset, int i, int j, int k) const {
+    if (b && b->data) return b->data[offset];
+    return b ? b->value : materialTile(i, j, k);
   }
 
   mutable VoxelVolume::Grid::ConstAccessor acc_;
-  struct CachedLeaf {
-    int i = 0, j = 0, k = 0;  // leaf origin / 8
-    const float* data = nullptr;
-  };
+  float air_;
   mutable CachedLeaf cache_[kLeafCache];
 };
 

@@ -103,9 +103,10 @@ TEST(VolumeSampler, GradientPointsIntoABall) {
   EXPECT_EQ(s.density({-50, 0, 0}), 0.f);  // outside the volume: air
 }
 
-// The sampler keeps the buffers of the leaves it read last (VolumeSampler.h):
-// after milling has changed voxels in place and turned dense tiles into
-// leaves, it reads exactly what a new sampler reads.
+// The sampler keeps the buffers of the leaves it read last and the air tiles
+// (VolumeSampler.h): after milling has changed voxels in place and turned
+// dense tiles into leaves, it reads exactly what a new sampler reads. (Kept
+// dense tiles read stale values here.)
 TEST(VolumeSampler, ReadsWhatMillingWroteAfterCachingTheLeaves) {
   const int n = 40;
   // Material below y = 20 (dense 8³ blocks there are tiles), air above.
