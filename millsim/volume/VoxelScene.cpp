@@ -56,6 +56,12 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
 }
 
 double VoxelScene::field(const glm::dvec3& world) const {
+  // One volume, as in every shipped lesson: no loop and no maximum (66 → 58
+  // instructions a call of its own; #1's §8.2 frames −1.7 %, callgrind).
+  if (volumes_.size() == 1) {
+    const Volume& v = *volumes_.front();
+    return double(v.sampler.density(v.worldToIndexLinear * world + v.worldToIndexOffset)) - v.placement.iso;
+  }
   double best = -std::numeric_limits<double>::infinity();
   for (const auto& v : volumes_) {
     const glm::dvec3 idx = v->worldToIndexLinear * world + v->worldToIndexOffset;
