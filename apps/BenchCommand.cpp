@@ -138,6 +138,7 @@ struct PhysicalArgs {
   std::vector<std::string> renderers;
   std::vector<double> voxelMm{0.2, 0.1, 0.05};
   double sweepVoxelMm = 0.0;  // > 0: also each resolution field's values at this voxel size
+  std::vector<std::string> sets;  // FIELD=VALUE overrides of the renderers' defaults
   bool quick = false, ownLaw = true;
   std::string csv, md, poses;
 };
@@ -157,6 +158,13 @@ int runPhysical(const PhysicalArgs& a) {
     cfg.poses = &poses;
   }
   const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
+  FieldValues overrides;
+  for (const std::string& set : a.sets) {
+    const auto eq = set.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw std::invalid_argument("--set expects FIELD=VALUE (e.g. contactStiffness=10000), got '" + set + "'");
+    overrides.push_back({set.substr(0, eq), set.substr(eq + 1)});
+  }
   std::vector<PhysicalRow> rows, sweepRows;
   std::map<std::pair<std::string, double>, AccuracyRow> ownRows;
   std::ostringstream orders;
@@ -164,7 +172,7 @@ int runPhysical(const PhysicalArgs& a) {
   for (const std::string& type : types) {
     std::vector<double> hs, fe, de, te, ae, dr;
     for (double mm : a.voxelMm) {
-      auto r = measurePhysical({type, {}}, mm * 1e-3, cfg);
+      auto r = measurePhysical({type, overrides}, mm * 1e-3, cfg);
       const PhysicalRow& all = r.back();
       std::cerr << type << " h=" << mm << "mm: force " << pct(all.forceRms) << " %, direction "
                 << fmt(all.directionRms) << " deg, torque " << fmt(all.torqueRms) << ", drawn " << fmt(all.drawnRms)
@@ -172,7 +180,7 @@ int runPhysical(const PhysicalArgs& a) {
       hs.push_back(mm), fe.push_back(all.forceRms), de.push_back(all.directionRms), te.push_back(all.torqueRms);
       ae.push_back(all.armRelRms), dr.push_back(all.drawnRms * mm);
       rows.insert(rows.end(), r.begin(), r.end());
-      if (a.ownLaw) ownRows[{type, mm}] = measureAccuracy({type, {}}, mm * 1e-3, own).back();
+      if (a.ownLaw) ownRows[{type, mm}] = measureAccuracy({type, overrides}, mm * 1e-3, own).back();
     }
     if (a.sweepVoxelMm > 0.0) {
       const auto probe = makeRenderer({type, {}});
@@ -181,7 +189,9 @@ int runPhysical(const PhysicalArgs& a) {
           std::string label;
           PhysicalConfig sweepCfg = cfg;
           sweepCfg.poses = nullptr;  // per-pose rows are the defaults'
-          auto r = measurePhysical(sweepSpec(type, field, v, label), a.sweepVoxelMm * 1e-3, sweepCfg);
+          RendererSpec spec = sweepSpec(type, field, v, label);
+          spec.fields.insert(spec.fields.begin(), overrides.begin(), overrides.end());
+          auto r = measurePhysical(spec, a.sweepVoxelMm * 1e-3, sweepCfg);
           for (PhysicalRow& row : r) row.resolution = label;
           std::cerr << type << " " << label << " h=" << a.sweepVoxelMm << "mm: force " << pct(r.back().forceRms)
                     << " %, direction " << fmt(r.back().directionRms) << " deg, p50 " << fmt(r.back().p50Us) << " us\n";
@@ -421,6 +431,9 @@ void addBenchCommand(CLI::App& app, int& result) {
   phys->add_option("--sweep-voxel", ph->sweepVoxelMm,
                    "Also sweep each renderer's resolution fields at this voxel size in mm (e.g. 0.1; default: no sweep)")
       ->check(CLI::Range(0.01, 1.0));
+  phys->add_option("--set", ph->sets,
+                   "FIELD=VALUE: set a field of the renderers measured (repeatable), e.g. contactStiffness=10000; "
+                   "the rows are labelled with the defaults' names");
   phys->add_flag("--quick", ph->quick, "One sub-voxel phase, and the quick own-law run");
   phys->add_flag("!--no-own-law", ph->ownLaw, "Skip the own-law column (bench accuracy's figure)");
   phys->add_option("--csv", ph->csv, "Write every row (per scene and 'all') as CSV");
