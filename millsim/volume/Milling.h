@@ -70,6 +70,18 @@ private:
   const TissueMap* tissues_;
   std::unique_ptr<TissueMap::LabelGrid::ConstAccessor> labels_;  // only with tissues
   float iso_;
+  // The leaves a stamp's box spans, looked up once a stamp (stampWith): up to
+  // 5 per axis (a reach of 16 voxels); a larger stamp looks up per row.
+  static constexpr int kStampLeaves = 5;
+  struct StampLeaf {
+    unsigned stamp = 0;  // valid in the stamp with this number
+    VoxelVolume::Grid::TreeType::LeafNodeType* leaf = nullptr;
+    bool air = false;  // no leaf: an air tile, nothing to remove
+    const TissueMap::LabelGrid::TreeType::LeafNodeType* labelLeaf = nullptr;
+    int tileLabel = 0;
+  };
+  StampLeaf stampLeaves_[kStampLeaves * kStampLeaves * kStampLeaves];
+  unsigned stampNumber_ = 0;
   // Copyable (a Miller is moved into its VoxelScene) though atomic.
   struct Total {
     std::atomic<double> value{0.0};
