@@ -2,7 +2,7 @@
 // VolumeSampler: the one fast path for reading densities. Trilinear density
 // and gradient at any index-space point through a cached OpenVDB accessor; one
 // sampler per thread (accessors are not shared). Outside the volume the value
-// is air.
+// is air, however far (or NaN) the point.
 #include <cmath>
 #include <limits>
 
@@ -19,9 +19,9 @@ public:
 
   // Trilinear density at an index-space point (voxel centres at integers).
   float density(const glm::dvec3& p) const {
-    const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
+    const double fx = std::floor(inRange(p.x)), fy = std::floor(inRange(p.y)), fz = std::floor(inRange(p.z));
     const int i = static_cast<int>(fx), j = static_cast<int>(fy), k = static_cast<int>(fz);
-    const double tx = p.x - fx, ty = p.y - fy, tz = p.z - fz;
+    const double tx = inRange(p.x) - fx, ty = inRange(p.y) - fy, tz = inRange(p.z) - fz;
     float c[8];
     // When the cell lies inside one 8³ leaf (343 of its 512 cells) whose
     // buffer is kept: eight reads from it (offset = x·64 + y·8 + z) instead of
@@ -54,6 +54,15 @@ public:
   float voxel(int i, int j, int k) const { return acc_.getValue(openvdb::Coord(i, j, k)); }
 
 private:
+  // A coordinate the cast to int and the corner above it can take: a point
+  // farther out (or NaN) reads the air 2^30 voxels away, not an undefined
+  // cast (UBSan: "outside the range of representable values") or a NaN
+  // weight. Two compare-and-selects a coordinate.
+  static double inRange(double x) {
+    constexpr double kFar = 1 << 30;
+    return x > -kFar ? (x < kFar ? x : kFar) : -kFar;
+  }
+
   // The buffers of the leaves read last, one slot per leaf position modulo
   // 4 on each axis, so that any 4×4×4 leaves (a burr and its shaft's foot
   // span up to 3 per axis) never evict each other. The accessor caches one

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <thread>
@@ -101,6 +102,21 @@ TEST(VolumeSampler, GradientPointsIntoABall) {
     EXPECT_GT(glm::dot(g, -dir), 0.98);  // density grows inwards
   }
   EXPECT_EQ(s.density({-50, 0, 0}), 0.f);  // outside the volume: air
+}
+
+// A point far outside the index range, or NaN, reads air: no undefined cast
+// to int (UBSan flags it) and no NaN weight (a NaN point gave a NaN density).
+TEST(VolumeSampler, ReadsAirFarOutsideAndAtNaN) {
+  auto v = ball(40, 12.0);
+  VolumeSampler s(v);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const glm::dvec3 p : {glm::dvec3(1e300, 19.5, 19.5), glm::dvec3(19.5, -1e300, 19.5), glm::dvec3(19.5, 19.5, 3e9),
+                             glm::dvec3(nan, 19.5, 19.5), glm::dvec3(19.5, nan, nan), glm::dvec3(-inf, 19.5, 19.5)}) {
+    EXPECT_EQ(s.density(p), 0.f) << p.x << " " << p.y << " " << p.z;
+    const glm::dvec3 g = s.gradient(p);
+    EXPECT_TRUE(std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z)) << p.x << " " << p.y << " " << p.z;
+  }
+  EXPECT_EQ(s.density({19.5, 19.5, 19.5}), 1.f);  // and the ball is still there
 }
 
 // The sampler keeps the buffers of the leaves it read last and the air tiles
