@@ -164,12 +164,17 @@ private:
   int gatherContacts(HapticScene& scene, std::uint32_t& flags) {
     const glm::dmat3 R = glm::mat3_cast(tool_.orientation), Rt = glm::transpose(R);
     int contacts = 0;
+    // The contacts are summed in the tool's frame, where the tool's distance
+    // field gives them, and turned into the world once (addRotated): turning
+    // each contact's normal and Hessian (R·H·Rᵀ, two out-of-line 3×3
+    // products) was a sixth of the frames' instructions over the §8.2 replay.
+    accTool_.clear();
     for (std::size_t i = 0; i < shells_.size(); ++i) {
       const Shells& s = shells_[i];
       auto coarse = [&] { return &scene.pointShell(i, 2 * p_.scale); };
       const auto& v = *s.placement;
       const Obb box = toolBox(v, tool_, 0.0);
-      // Volume-local point to tool frame in one affine map (for the cheap reject only).
+      // Volume-local point to the tool's frame in one affine map.
       const glm::dmat3 toTool = Rt * glm::dmat3(v.localToWorld);
       const glm::dvec3 toToolOrigin = Rt * (glm::dvec3(v.localToWorld[3]) - tool_.position);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
@@ -179,7 +184,7 @@ private:
         shell = coarse(), flags |= kFlagCoarseFallback;
       for (int attempt = 0; attempt < 2; ++attempt) {
         const double k = p_.contactK * double(shell->scale() * shell->scale());
-        const Wrench6 before = acc_;
+        const Wrench6 before = accTool_;
         int n = 0;
         bool full = false;
         auto test = [&](const ShellPoint& sp) {
@@ -190,29 +195,26 @@ private:
           // positive. Most candidates of a fine shell end here (at scale 1 in
           // the §8.2 procedure, 850 of 930 a frame). Not for the sampled
           // grid, which rounds the creases and can be negative just outside.
+          const glm::dvec3 q = toTool * glm::dvec3(sp.position) + toToolOrigin;
           if (!p_.sampled) {
-            const glm::dvec3 c = toTool * glm::dvec3(sp.position) + toToolOrigin;
-            const double radial = c.x * c.x + c.z * c.z;
-            if (radial > hull_.outer2 || c.y < hull_.lo || c.y > hull_.hi ||
-                (c.y > hull_.headTop && radial > hull_.shaft2))
+            const double radial = q.x * q.x + q.z * q.z;
+            if (radial > hull_.outer2 || q.y < hull_.lo || q.y > hull_.hi ||
+                (q.y > hull_.headTop && radial > hull_.shaft2))
               return;
-            if (hull_.round && radial + c.y * c.y > hull_.outer2 && (c.y < -hull_.eps || radial > hull_.shaft2)) return;
+            if (hull_.round && radial + q.y * q.y > hull_.outer2 && (q.y < -hull_.eps || radial > hull_.shaft2)) return;
           }
-          const glm::dvec3 pw = glm::dvec3(v.localToWorld * glm::dvec4(glm::dvec3(sp.position), 1.0));
-          const glm::dvec3 r = pw - tool_.position;
-          const glm::dvec3 q = Rt * r;
           // The hull test leaves almost only contacts: one analytic evaluation, not a distance first.
           if (p_.sampled && !(sdf_.sampledDistance(q) < 0.0)) return;
           const SdfSample sm = p_.sampled ? sdf_.sampled(q) : sdf_.analytic(q, true);
           if (!(sm.distance < 0.0)) return;
-          addContact(acc_, r, sm.distance, R * sm.gradient, R * sm.hessian * Rt, k);
+          addContact(accTool_, q, sm.distance, sm.gradient, sm.hessian, k);
           full = ++n >= int(p_.maxContacts);
         };
         if (!p_.culling) shell->forEach(test);
         else if (shell == s.fine) shell->forEachIn(candidates_, test);
         else shell->forEachCandidate(overlaps, test);
         if (full && shell == s.fine) {
-          acc_ = before;  // too many contacts: redo with the coarse shell
+          accTool_ = before;  // too many contacts: redo with the coarse shell
           shell = coarse();
           flags |= kFlagCoarseFallback;
           continue;
@@ -222,6 +224,7 @@ private:
         break;
       }
     }
+    addRotated(acc_, accTool_, R);
     return contacts;
   }
 
@@ -273,6 +276,7 @@ private:
   std::vector<Shells> shells_;
   std::vector<int> candidates_;  // the fine shell's buckets gatherContacts visits
   Wrench6 acc_;
+  Wrench6 accTool_;  // the contacts' part of acc_, in the tool's frame (gatherContacts)
   Pose tool_, lastDevice_;
   bool touched_ = false;  // the last step had contacts (a step that loses them all is held short)
   bool startFree_ = true;  // the next step first moves a tool that starts in material out of it

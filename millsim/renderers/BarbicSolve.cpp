@@ -48,6 +48,22 @@ void addContact(Wrench6& acc, const glm::dvec3& rg, double d, const glm::dvec3& 
   }
 }
 
+void addRotated(Wrench6& acc, const Wrench6& t, const glm::dmat3& Rg) {
+  const Eigen::Matrix3d R = toEigen(Rg), Rt = R.transpose();
+  acc.w.head<3>() += R * t.w.head<3>();
+  acc.w.tail<3>() += R * t.w.tail<3>();
+  const Mat6 gn = t.Kgn.selfadjointView<Eigen::Lower>();  // only its lower triangle is kept
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      acc.K.block<3, 3>(3 * r, 3 * c) += R * t.K.block<3, 3>(3 * r, 3 * c) * Rt;
+      if (c <= r) {
+        const Eigen::Matrix3d b = R * gn.block<3, 3>(3 * r, 3 * c) * Rt;
+        for (int j = 0; j < 3; ++j)
+          for (int i = (r == c ? j : 0); i < 3; ++i) acc.Kgn(3 * r + i, 3 * c + j) += b(i, j);
+      }
+    }
+}
+
 glm::dvec3 rotationError(const glm::dquat& tool, const glm::dquat& device) {
   glm::dquat e = device * glm::inverse(tool);
   if (e.w < 0.0) e = -e;  // the short way round

@@ -30,6 +30,12 @@ struct Wrench6 {
 // ½·k·d², so F = k·d·n (pushes the tool off the point) and τ = r × F.
 void addContact(Wrench6& acc, const glm::dvec3& r, double d, const glm::dvec3& n, const glm::dmat3& H, double k);
 
+// Adds a wrench and its stiffnesses accumulated in the tool's frame (arms,
+// normals and Hessians in tool coordinates) to `acc` in the world frame: w by
+// R, each 3×3 block X by R·X·Rᵀ (a rotation does not change the sums, so it is
+// applied once a frame rather than to each contact's Hessian and normal).
+void addRotated(Wrench6& acc, const Wrench6& inToolFrame, const glm::dmat3& R);
+
 struct Coupling {
   double k = 0, b = 0;    // linear stiffness (N/m) and damping (N·s/m)
   double kr = 0, br = 0;  // angular stiffness (N·m/rad) and damping (N·m·s/rad)

@@ -188,6 +188,35 @@ TEST(BarbicSolve, AssembledStiffnessMatchesFiniteDifferencesOfTheForces) {
     }
 }
 
+// The renderer sums its contacts in the tool's frame and turns the sums into
+// the world once (addRotated): the same wrench and stiffnesses as each
+// contact turned into the world first (Kgn: its lower triangle, all that is kept).
+TEST(BarbicSolve, ContactsSummedInTheToolFrameAndTurnedOnceEqualTheWorldSums) {
+  ToolSdf sdf(kTool, 0.05e-3);
+  const Pose tool{{0.1e-3, 0.2e-3, -0.05e-3}, glm::normalize(glm::dquat(0.9, 0.2, -0.3, 0.25))};
+  const glm::dmat3 R = glm::mat3_cast(tool.orientation), Rt = glm::transpose(R);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.6e-3, 0.6e-3), uy(-0.6e-3, 3.1e-3);
+  Wrench6 world, inTool, turned;
+  const Coupling c{2000, 1, 0.1, 5e-4};
+  addCouplingSpring(world, c, tool, Pose{});
+  addCouplingSpring(turned, c, tool, Pose{});  // what the frame already holds is kept
+  int n = 0;
+  while (n < 40) {
+    const glm::dvec3 q(u(rng), uy(rng), u(rng));
+    const SdfSample s = sdf.analytic(q, true);
+    if (!(s.distance < -0.01e-3)) continue;
+    addContact(world, R * q, s.distance, R * s.gradient, R * s.hessian * Rt, 5000.0);
+    addContact(inTool, q, s.distance, s.gradient, s.hessian, 5000.0);
+    ++n;
+  }
+  addRotated(turned, inTool, R);
+  EXPECT_LT((turned.w - world.w).norm(), 1e-12 * world.w.norm());
+  EXPECT_LT((turned.K - world.K).norm(), 1e-12 * world.K.norm());
+  const Mat6 a = turned.Kgn.triangularView<Eigen::Lower>(), b = world.Kgn.triangularView<Eigen::Lower>();
+  EXPECT_LT((a - b).norm(), 1e-12 * b.norm());
+}
+
 TEST(BarbicSolve, CouplingKeepsTheSystemPositiveDefiniteWithAnyNumberOfContacts) {
   ToolSdf sdf(kTool, 0.05e-3);
   const Coupling c{2000, 1, 0.1, 5e-4};
