@@ -3,6 +3,7 @@
 // (Gottschalk et al. 1996, "OBBTree"; Ericson, Real-Time Collision Detection
 // §4.4): the culling test of Algorithm #3's point-shell hierarchy (§6.2).
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -22,6 +23,14 @@ public:
     // procedure went to this test, a fifth of it to these nine terms).
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) r_[i][j] = std::abs(axis_[j][i]) + 1e-9;
+    // The box's world bounds in float, rounded outwards: a cheap first reject
+    // in the boxes' own precision (below). Most boxes tested are far from
+    // the tool, and the full test converted each to double first.
+    for (int i = 0; i < 3; ++i) {
+      const double extent = half_.x * r_[i][0] + half_.y * r_[i][1] + half_.z * r_[i][2];
+      boundLo_[i] = std::nextafter(float(centre_[i] - extent), -std::numeric_limits<float>::infinity());
+      boundHi_[i] = std::nextafter(float(centre_[i] + extent), std::numeric_limits<float>::infinity());
+    }
   }
 
   bool contains(const glm::dvec3& p) const {
@@ -34,6 +43,11 @@ public:
   // OBB axes and their 9 cross products. Conservative by a tiny epsilon.
   bool overlaps(const Aabb& box) const {
     if (box.empty()) return false;
+    // Apart along a world axis by more than float rounding: the world-axis
+    // tests below would say so too, so this never changes the answer.
+    if (box.hi.x < boundLo_.x || box.lo.x > boundHi_.x || box.hi.y < boundLo_.y || box.lo.y > boundHi_.y ||
+        box.hi.z < boundLo_.z || box.lo.z > boundHi_.z)
+      return false;
     const glm::dvec3 bc = (glm::dvec3(box.lo) + glm::dvec3(box.hi)) * 0.5;
     const glm::dvec3 be = (glm::dvec3(box.hi) - glm::dvec3(box.lo)) * 0.5;
     const glm::dvec3 t = centre_ - bc;
@@ -58,6 +72,7 @@ private:
   glm::dvec3 axis_[3];
   glm::dvec3 half_;
   double r_[3][3];
+  glm::vec3 boundLo_, boundHi_;  // the box's world bounds, float, rounded outwards
 };
 
 }  // namespace millsim

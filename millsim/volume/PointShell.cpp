@@ -11,15 +11,48 @@ namespace millsim {
 
 namespace {
 
+// The fine voxels updateRegion copied: [lo, lo + dim), x fastest.
+struct DenseFine {
+  const float* data;
+  glm::ivec3 lo, dim;
+  std::size_t index(int i, int j, int k) const {
+    return (std::size_t(k - lo.z) * std::size_t(dim.y) + std::size_t(j - lo.y)) * std::size_t(dim.x) + std::size_t(i - lo.x);
+  }
+  float operator()(int i, int j, int k) const { return data[index(i, j, k)]; }
+  // The cell's corners from (x, y, z): c[a + 2b + 4c] is voxel (x + a, y + b, z + c).
+  // One index and seven offsets, not eight indices (a tenth of the shell
+  // update's instructions went to trilinear()'s index arithmetic).
+  void corners(int x, int y, int z, float c[8]) const {
+    const float* p = data + index(x, y, z);
+    const std::size_t sy = std::size_t(dim.x), sz = std::size_t(dim.x) * std::size_t(dim.y);
+    c[0] = p[0], c[1] = p[1], c[2] = p[sy], c[3] = p[sy + 1];
+    c[4] = p[sz], c[5] = p[sz + 1], c[6] = p[sz + sy], c[7] = p[sz + sy + 1];
+  }
+};
+
+// The fine voxels read through the grid's accessor (a bucket built or rebuilt whole).
+template <class Accessor> struct AccessorFine {
+  const Accessor& acc;
+  float operator()(int i, int j, int k) const { return acc.getValue(openvdb::Coord(i, j, k)); }
+  void corners(int x, int y, int z, float c[8]) const {
+    for (int n = 0; n < 8; ++n) c[n] = (*this)(x + (n & 1), y + ((n >> 1) & 1), z + (n >> 2));
+  }
+};
+
 // Trilinear value of the fine field at p (fine index units; integers are voxel centres).
 template <class Fine> double trilinear(const Fine& fine, const glm::dvec3& p) {
   const glm::dvec3 fl = glm::floor(p), f = p - fl;
   const int x = int(fl.x), y = int(fl.y), z = int(fl.z);
+  // At a voxel centre (where every point's walk starts at scale 1) the
+  // weights below are all 0 and give exactly the voxel's value.
+  if (f.x == 0.0 && f.y == 0.0 && f.z == 0.0) return fine(x, y, z);
+  float c[8];
+  fine.corners(x, y, z, c);
   auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
-  const double c00 = lerp(fine(x, y, z), fine(x + 1, y, z), f.x);
-  const double c10 = lerp(fine(x, y + 1, z), fine(x + 1, y + 1, z), f.x);
-  const double c01 = lerp(fine(x, y, z + 1), fine(x + 1, y, z + 1), f.x);
-  const double c11 = lerp(fine(x, y + 1, z + 1), fine(x + 1, y + 1, z + 1), f.x);
+  const double c00 = lerp(c[0], c[1], f.x);
+  const double c10 = lerp(c[2], c[3], f.x);
+  const double c01 = lerp(c[4], c[5], f.x);
+  const double c11 = lerp(c[6], c[7], f.x);
   return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
 }
 
@@ -169,8 +202,7 @@ std::size_t PointShell::computeBucket(const Accessor& acc, int b) {
           const float nb[6] = {coarse(acc, I - 1, J, K), coarse(acc, I + 1, J, K), coarse(acc, I, J - 1, K),
                                coarse(acc, I, J + 1, K), coarse(acc, I, J, K - 1), coarse(acc, I, J, K + 1)};
           ShellPoint p[2];
-          const auto fine = [&](int x, int y, int z) { return acc.getValue(openvdb::Coord(x, y, z)); };
-          const int m = makePoints(fine, v, nb, I, J, K, p);
+          const int m = makePoints(AccessorFine<Accessor>{acc}, v, nb, I, J, K, p);
           for (int q = 0; q < m && n < kMaxBucketPoints; ++q) {
             merged_[n] = p[q];
             mergedCells_[n++] = std::uint16_t(((K - lo.z) * kBucket + (J - lo.y)) * kBucket + (I - lo.x));
@@ -383,32 +415,27 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
             for (int i = lo.x; i <= hi.x; ++i) row[i - fLo.x] = column[(i & 7) << 6];
           }
       }
-  auto fine = [&](int i, int j, int k) -> const float& {
-    return fineScratch_[(std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x + (i - fLo.x)];
-  };
-  // Coarse values of E, exactly as coarse() computes them (the densest fine voxel).
-  for (int K = eLo.z; K < eLo.z + eDim.z; ++K)
-    for (int J = eLo.y; J < eLo.y + eDim.y; ++J)
-      for (int I = eLo.x; I < eLo.x + eDim.x; ++I) {
-        float v;
-        if (scale_ == 1) {
-          v = fine(I, J, K);
-        } else if (I < 0 || J < 0 || K < 0 || I >= coarseDims_.x || J >= coarseDims_.y || K >= coarseDims_.z) {
-          v = volume_->airValue();
-        } else {
-          v = volume_->airValue();
-          const float* block = &fine(I * scale_, J * scale_, K * scale_);
-          for (int k = 0; k < scale_; ++k)
-            for (int j = 0; j < scale_; ++j) {
-              const float* row = block + (std::size_t(k) * fDim.y + std::size_t(j)) * fDim.x;
-              for (int i = 0; i < scale_; ++i) v = std::max(v, row[i]);
-            }
+  const DenseFine fine{fineScratch_.data(), fLo, fDim};
+  // Coarse values of E, exactly as coarse() computes them (the densest fine
+  // voxel). At scale 1 they are the fine voxels: read from F itself.
+  if (scale_ > 1)
+    for (int K = eLo.z; K < eLo.z + eDim.z; ++K)
+      for (int J = eLo.y; J < eLo.y + eDim.y; ++J)
+        for (int I = eLo.x; I < eLo.x + eDim.x; ++I) {
+          float v = volume_->airValue();
+          if (I >= 0 && J >= 0 && K >= 0 && I < coarseDims_.x && J < coarseDims_.y && K < coarseDims_.z) {
+            const float* block = fineScratch_.data() + fine.index(I * scale_, J * scale_, K * scale_);
+            for (int k = 0; k < scale_; ++k)
+              for (int j = 0; j < scale_; ++j) {
+                const float* row = block + (std::size_t(k) * fDim.y + std::size_t(j)) * fDim.x;
+                for (int i = 0; i < scale_; ++i) v = std::max(v, row[i]);
+              }
+          }
+          coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)] = v;
         }
-        coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)] = v;
-      }
-  auto cv = [&](int I, int J, int K) {
-    return coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)];
-  };
+  // The coarse values, dense: F itself at scale 1, else E's copy.
+  const DenseFine coarse = scale_ == 1 ? fine : DenseFine{coarseScratch_.data(), eLo, eDim};
+  const std::ptrdiff_t sy = coarse.dim.x, sz = std::ptrdiff_t(coarse.dim.x) * coarse.dim.y;
 
   // Each bucket overlapping C: keep its points outside C, recompute those in C,
   // merged in scan order (K, J, I) as a full rebuild would list them.
@@ -441,12 +468,16 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
           }
         };
         for (int K = rLo.z; K <= rHi.z; ++K)
-          for (int J = rLo.y; J <= rHi.y; ++J)
+          for (int J = rLo.y; J <= rHi.y; ++J) {
+            // A row at a time, the neighbours at fixed strides: most of the
+            // box is air or deep material, and a 3-D index for each of the
+            // seven reads was most of the loop's cost.
+            const float* row = coarse.data + coarse.index(rLo.x, J, K);
             for (int I = rLo.x; I <= rHi.x; ++I) {
-              const float v = cv(I, J, K);
+              const float* c = row + (I - rLo.x);
+              const float v = *c;
               if (v <= iso_) continue;
-              const float n[6] = {cv(I - 1, J, K), cv(I + 1, J, K), cv(I, J - 1, K),
-                                  cv(I, J + 1, K), cv(I, J, K - 1), cv(I, J, K + 1)};
+              const float n[6] = {c[-1], c[1], c[-sy], c[sy], c[-sz], c[sz]};
               ShellPoint p[2];
               const int m = makePoints(fine, v, n, I, J, K, p);
               if (m == 0) continue;
@@ -456,6 +487,7 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
                 mergedCells_[merged++] = cellOf(I, J, K);
               }
             }
+          }
         flushOldBefore(std::numeric_limits<int>::max());
         // The same cap as a rebuild (the tail of a bucket with more points than
         // voxels, which real data does not reach, is dropped by both).
