@@ -11,22 +11,25 @@ namespace millsim {
 
 namespace {
 
-// The fine voxels updateRegion copied: [lo, lo + dim), x fastest.
+// The fine voxels updateRegion copied: [lo, lo + dim), z fastest, then y,
+// then x, as OpenVDB lays out a leaf, so that the copy moves runs of z.
 struct DenseFine {
   const float* data;
   glm::ivec3 lo, dim;
   std::size_t index(int i, int j, int k) const {
-    return (std::size_t(k - lo.z) * std::size_t(dim.y) + std::size_t(j - lo.y)) * std::size_t(dim.x) + std::size_t(i - lo.x);
+    return (std::size_t(i - lo.x) * std::size_t(dim.y) + std::size_t(j - lo.y)) * std::size_t(dim.z) + std::size_t(k - lo.z);
   }
+  std::size_t strideX() const { return std::size_t(dim.y) * std::size_t(dim.z); }
+  std::size_t strideY() const { return std::size_t(dim.z); }
   float operator()(int i, int j, int k) const { return data[index(i, j, k)]; }
   // The cell's corners from (x, y, z): c[a + 2b + 4c] is voxel (x + a, y + b, z + c).
   // One index and seven offsets, not eight indices (a tenth of the shell
   // update's instructions went to trilinear()'s index arithmetic).
   void corners(int x, int y, int z, float c[8]) const {
     const float* p = data + index(x, y, z);
-    const std::size_t sy = std::size_t(dim.x), sz = std::size_t(dim.x) * std::size_t(dim.y);
-    c[0] = p[0], c[1] = p[1], c[2] = p[sy], c[3] = p[sy + 1];
-    c[4] = p[sz], c[5] = p[sz + 1], c[6] = p[sz + sy], c[7] = p[sz + sy + 1];
+    const std::size_t sx = strideX(), sy = strideY();
+    c[0] = p[0], c[1] = p[sx], c[2] = p[sy], c[3] = p[sx + sy];
+    c[4] = p[1], c[5] = p[sx + 1], c[6] = p[sy + 1], c[7] = p[sx + sy + 1];
   }
 };
 
@@ -40,9 +43,16 @@ template <class Accessor> struct AccessorFine {
 };
 
 // Trilinear value of the fine field at p (fine index units; integers are voxel centres).
+// floor(v) of a coordinate within the volume's index range: truncate, then
+// step down below zero (glm::floor, without SSE4.1, was most of trilinear()).
+int floorToInt(double v) {
+  const int t = int(v);
+  return t - (v < double(t));
+}
+
 template <class Fine> double trilinear(const Fine& fine, const glm::dvec3& p) {
-  const glm::dvec3 fl = glm::floor(p), f = p - fl;
-  const int x = int(fl.x), y = int(fl.y), z = int(fl.z);
+  const int x = floorToInt(p.x), y = floorToInt(p.y), z = floorToInt(p.z);
+  const glm::dvec3 f = p - glm::dvec3(x, y, z);
   // At a voxel centre (where every point's walk starts at scale 1) the
   // weights below are all 0 and give exactly the voxel's value.
   if (f.x == 0.0 && f.y == 0.0 && f.z == 0.0) return fine(x, y, z);
@@ -394,30 +404,29 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
         const openvdb::Coord origin(ox, oy, oz);
         const Leaf* leaf = tree.probeConstLeaf(origin);
         const glm::ivec3 lo = glm::max(glm::ivec3(ox, oy, oz), fLo), hi = glm::min(glm::ivec3(ox, oy, oz) + 7, fHi);
+        const DenseFine to{fineScratch_.data(), fLo, fDim};
         if (!leaf) {  // a tile: one value for the whole block
           const float tile = tree.getValue(origin);
-          for (int k = lo.z; k <= hi.z; ++k)
+          for (int i = lo.x; i <= hi.x; ++i)
             for (int j = lo.y; j <= hi.y; ++j) {
-              float* row = fineScratch_.data() + (std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x;
-              std::fill(row + (lo.x - fLo.x), row + (hi.x - fLo.x) + 1, tile);
+              float* run = fineScratch_.data() + to.index(i, j, lo.z);
+              std::fill(run, run + (hi.z - lo.z) + 1, tile);
             }
           continue;
         }
-        // The leaf's values straight from its buffer (z fastest, then y, then
-        // x): no per-voxel lookup; this copy is most of an update's time.
+        // The leaf's values straight from its buffer, a run of z at a time
+        // (the same order as the copy's): no per-voxel lookup, and no
+        // strided read (across x that was a quarter of an update's time).
         const float* data = leaf->buffer().data();
-        for (int k = lo.z; k <= hi.z; ++k)
-          for (int j = lo.y; j <= hi.y; ++j) {
-            // The row starts at x = fLo.x: a pointer rebased to x = 0 could
-            // point before the buffer, which is undefined (clang UBSan).
-            float* row = fineScratch_.data() + (std::size_t(k - fLo.z) * fDim.y + (j - fLo.y)) * fDim.x;
-            const float* column = data + ((j & 7) << 3) + (k & 7);
-            for (int i = lo.x; i <= hi.x; ++i) row[i - fLo.x] = column[(i & 7) << 6];
-          }
+        for (int i = lo.x; i <= hi.x; ++i)
+          for (int j = lo.y; j <= hi.y; ++j)
+            std::copy_n(data + ((i & 7) << 6) + ((j & 7) << 3) + (lo.z & 7), hi.z - lo.z + 1,
+                        fineScratch_.data() + to.index(i, j, lo.z));
       }
   const DenseFine fine{fineScratch_.data(), fLo, fDim};
   // Coarse values of E, exactly as coarse() computes them (the densest fine
   // voxel). At scale 1 they are the fine voxels: read from F itself.
+  const DenseFine coarseCopy{coarseScratch_.data(), eLo, eDim};
   if (scale_ > 1)
     for (int K = eLo.z; K < eLo.z + eDim.z; ++K)
       for (int J = eLo.y; J < eLo.y + eDim.y; ++J)
@@ -425,17 +434,17 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
           float v = volume_->airValue();
           if (I >= 0 && J >= 0 && K >= 0 && I < coarseDims_.x && J < coarseDims_.y && K < coarseDims_.z) {
             const float* block = fineScratch_.data() + fine.index(I * scale_, J * scale_, K * scale_);
-            for (int k = 0; k < scale_; ++k)
+            for (int i = 0; i < scale_; ++i)
               for (int j = 0; j < scale_; ++j) {
-                const float* row = block + (std::size_t(k) * fDim.y + std::size_t(j)) * fDim.x;
-                for (int i = 0; i < scale_; ++i) v = std::max(v, row[i]);
+                const float* run = block + std::size_t(i) * fine.strideX() + std::size_t(j) * fine.strideY();
+                for (int k = 0; k < scale_; ++k) v = std::max(v, run[k]);
               }
           }
-          coarseScratch_[(std::size_t(K - eLo.z) * eDim.y + (J - eLo.y)) * eDim.x + (I - eLo.x)] = v;
+          coarseScratch_[coarseCopy.index(I, J, K)] = v;
         }
   // The coarse values, dense: F itself at scale 1, else E's copy.
-  const DenseFine coarse = scale_ == 1 ? fine : DenseFine{coarseScratch_.data(), eLo, eDim};
-  const std::ptrdiff_t sy = coarse.dim.x, sz = std::ptrdiff_t(coarse.dim.x) * coarse.dim.y;
+  const DenseFine coarse = scale_ == 1 ? fine : coarseCopy;
+  const std::ptrdiff_t sx = std::ptrdiff_t(coarse.strideX()), sy = std::ptrdiff_t(coarse.strideY());
 
   // Each bucket overlapping C: keep its points outside C, recompute those in C,
   // merged in scan order (K, J, I) as a full rebuild would list them.
@@ -474,10 +483,10 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
             // seven reads was most of the loop's cost.
             const float* row = coarse.data + coarse.index(rLo.x, J, K);
             for (int I = rLo.x; I <= rHi.x; ++I) {
-              const float* c = row + (I - rLo.x);
+              const float* c = row + (I - rLo.x) * sx;
               const float v = *c;
               if (v <= iso_) continue;
-              const float n[6] = {c[-1], c[1], c[-sy], c[sy], c[-sz], c[sz]};
+              const float n[6] = {c[-sx], c[sx], c[-sy], c[sy], c[-1], c[1]};
               ShellPoint p[2];
               const int m = makePoints(fine, v, n, I, J, K, p);
               if (m == 0) continue;

@@ -19,9 +19,9 @@ public:
 
   // Trilinear density at an index-space point (voxel centres at integers).
   float density(const glm::dvec3& p) const {
-    const double fx = std::floor(inRange(p.x)), fy = std::floor(inRange(p.y)), fz = std::floor(inRange(p.z));
-    const int i = static_cast<int>(fx), j = static_cast<int>(fy), k = static_cast<int>(fz);
-    const double tx = inRange(p.x) - fx, ty = inRange(p.y) - fy, tz = inRange(p.z) - fz;
+    const double x = inRange(p.x), y = inRange(p.y), z = inRange(p.z);
+    const int i = floorToInt(x), j = floorToInt(y), k = floorToInt(z);
+    const double tx = x - i, ty = y - j, tz = z - k;
     float c[8];
     // When the cell lies inside one 8³ leaf (343 of its 512 cells) whose
     // buffer is kept: eight reads from it (offset = x·64 + y·8 + z) instead of
@@ -61,6 +61,13 @@ private:
   static double inRange(double x) {
     constexpr double kFar = 1 << 30;
     return x > -kFar ? (x < kFar ? x : kFar) : -kFar;
+  }
+  // floor(x) for |x| ≤ 2^30: truncate, then step down below zero. Without
+  // SSE4.1 (Debian's baseline) std::floor is a dozen instructions; three of
+  // them were a fifth of a sample's fast path.
+  static int floorToInt(double x) {
+    const int t = static_cast<int>(x);
+    return t - (x < double(t));
   }
 
   // The buffers of the leaves read last, one slot per leaf position modulo
