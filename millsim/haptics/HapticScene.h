@@ -44,6 +44,13 @@ public:
     (void)radius;
     return true;
   }
+  // Where the renderer is about to sample most this frame: within `reach`
+  // (m) of a world point. A hint for speed only (VoxelScene keeps a dense copy
+  // of the voxels there); every point may still be sampled, with the same result.
+  virtual void focus(const glm::dvec3& world, double reach) {
+    (void)world;
+    (void)reach;
+  }
   // Unit outward normal at a point near the surface (zero if undefined).
   glm::dvec3 outwardNormal(const glm::dvec3& world) const;
   // Smallest voxel edge in world units: the natural step for searches.

@@ -120,6 +120,9 @@ public:
     // so the burr's surface, not its centre, meets the material; the paper's
     // variant holds the centre vertex itself on the surface.
     burr_.bind(scene);
+    // The burr's proxy samples the scene within its radius and a couple of
+    // voxels of where it is held: the scene keeps a dense copy of the voxels there.
+    scene.focus(startFree_ ? c : tip_.position(), p_.tool.tipRadius + 2.0 * scene.voxelSize());
     if (startFree_) {  // the first frame after a reset: the tip's proxy out of material along the axis (FreeStart.h)
       startFree_ = false;
       const double h = scene.voxelSize();

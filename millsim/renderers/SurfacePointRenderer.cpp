@@ -31,7 +31,8 @@ class SurfacePointAlgorithm final : public HapticAlgorithm {
 public:
   SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k,
                         double feedResistance, bool deepest)
-      : k_(k), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice), heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
+      : k_(k), headReach_(tool.head().boundingRadius()), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice),
+        heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
     // Sphere: a Fibonacci lattice spreads any number of points evenly.
     const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
     if (tool.round()) {
@@ -94,6 +95,9 @@ public:
     const glm::dvec3 c = device.position;
     const glm::dmat3 R = glm::mat3_cast(device.orientation);
     const double h = scene.voxelSize();
+    // The burr's points and their contacts' searches lie within its reach
+    // and a couple of voxels: the scene keeps a dense copy of the voxels there.
+    scene.focus(c, headReach_ + 2.0 * h);
     if (deepest_) {
       stepDeepest(scene, c, R, out);
       return finish(scene, in, out);
@@ -550,6 +554,7 @@ private:
   }
 
   double k_;
+  double headReach_;  // the burr's points lie within this of its centre (m)
   FeedLaw feed_;
   CutFront cut_;  // where the burr cuts
   int perSlice_;

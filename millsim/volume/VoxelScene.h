@@ -72,6 +72,7 @@ public:
   double field(const glm::dvec3& world) const override;
   glm::dvec3 gradient(const glm::dvec3& world) const override;
   bool mayHaveMaterialNear(const glm::dvec3& world, double radius) const override;
+  void focus(const glm::dvec3& world, double reach) override;
   double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
   // Merges the milling the shell has not seen yet (see Shell), then returns it.
   const PointShell& pointShell(std::size_t volume, int scale) override;

@@ -152,6 +152,67 @@ TEST(VolumeSampler, ReadsWhatMillingWroteAfterCachingTheLeaves) {
   EXPECT_GT(changed, 20) << "the stamps reached many of the points";
 }
 
+// The sampler's window (a dense copy around focus()) reads exactly what the
+// grid holds: inside it, across its faces and outside it; after milling once
+// told of it (refresh(), as VoxelScene::mill does); and after moving on.
+TEST(VolumeSampler, WindowReadsWhatTheGridHolds) {
+  const int n = 48;
+  auto v = makeVolume({n, n, n}, 1e-3, 0.f, [](int i, int j, int k) {
+    return j < 24 ? 1.f : float(std::clamp(0.5 + 0.1 * (i - 20) - 0.05 * (k - 30), 0.0, 1.0));
+  });
+  v.grid().tree().prune();  // tiles as well as leaves
+  VolumeSampler windowed(v);
+  windowed.enableWindow(16);
+  std::mt19937 rng(3);
+  auto compare = [&](const glm::dvec3& centre, const char* when) {
+    VolumeSampler fresh(v);
+    std::uniform_real_distribution<double> u(-11.0, 11.0);  // the window spans ±8
+    int differ = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const glm::dvec3 p = centre + glm::dvec3(u(rng), u(rng), u(rng));
+      differ += windowed.density(p) != fresh.density(p);
+    }
+    EXPECT_EQ(differ, 0) << when;
+  };
+  const glm::dvec3 a(20.3, 23.6, 21.2), b(31.7, 18.2, 27.9);
+  windowed.focus(a, 5.0);
+  compare(a, "after focusing");
+  Miller miller(v, 0.5f);
+  DirtyBlocks dirty(v.dims());
+  ASSERT_GT(miller.stamp(v.indexToLocal(a + glm::dvec3(1.5, -2.0, 0.5)), 4e-3, dirty).voxelsChanged, 0);
+  windowed.refresh(dirty.voxelLo(), dirty.voxelHi());
+  compare(a, "after milling");
+  windowed.focus(b, 5.0);
+  compare(b, "after moving on");
+  windowed.focus(b + glm::dvec3(1.0), 5.0);  // still held: no copy, same values
+  compare(b, "after a small move");
+  windowed.focus(a, 20.0);  // a reach the window cannot hold: left where it was
+  compare(b, "after a reach too large");
+}
+
+// VoxelScene keeps its sampler's window current with its own milling: after
+// each stamp near the focus, field() equals a fresh sampler's density.
+TEST(VoxelScene, FieldFollowsMillingInTheFocusWindow) {
+  auto v = ball(48, 18.0);
+  VoxelScene scene;
+  scene.addVolume(v, glm::dmat4(1.0), 0.5);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const glm::dvec3 surface = v.indexToLocal(glm::dvec3(23.5 + 18.0, 23.5, 23.5));  // on the ball, +x
+  int differ = 0;
+  for (int stamp = 0; stamp < 30; ++stamp) {
+    const glm::dvec3 c = surface + 1e-3 * glm::dvec3(-0.2 * stamp + u(rng), u(rng), u(rng));
+    scene.focus(c, 5e-3);
+    scene.mill(c, 3e-3);
+    VolumeSampler fresh(v);
+    for (int i = 0; i < 200; ++i) {
+      const glm::dvec3 p = c + 6e-3 * glm::dvec3(u(rng), u(rng), u(rng));
+      differ += scene.field(p) != double(fresh.density(v.localToIndex(p))) - 0.5;
+    }
+  }
+  EXPECT_EQ(differ, 0);
+}
+
 TEST(ToothPhantom, IsDeterministic) {
   const ToothPhantomOptions small{{64, 64, 44}, 0.4e-3, false};
   EXPECT_EQ(makeToothPhantom(small).contentHash(), makeToothPhantom(small).contentHash());
