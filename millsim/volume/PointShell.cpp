@@ -42,7 +42,6 @@ template <class Accessor> struct AccessorFine {
   }
 };
 
-// Trilinear value of the fine field at p (fine index units; integers are voxel centres).
 // floor(v) of a coordinate within the volume's index range: truncate, then
 // step down below zero (glm::floor, without SSE4.1, was most of trilinear()).
 int floorToInt(double v) {
@@ -50,6 +49,7 @@ int floorToInt(double v) {
   return t - (v < double(t));
 }
 
+// Trilinear value of the fine field at p (fine index units; integers are voxel centres).
 template <class Fine> double trilinear(const Fine& fine, const glm::dvec3& p) {
   const int x = floorToInt(p.x), y = floorToInt(p.y), z = floorToInt(p.z);
   const glm::dvec3 f = p - glm::dvec3(x, y, z);
