@@ -167,7 +167,8 @@ private:
     // The contacts are summed in the tool's frame, where the tool's distance
     // field gives them, and turned into the world once (addRotated): turning
     // each contact's normal and Hessian (R·H·Rᵀ, two out-of-line 3×3
-    // products) was a sixth of the frames' instructions over the §8.2 replay.
+    // products) and its point was 7 % of the frames' instructions over the
+    // §8.2 replay.
     accTool_.clear();
     for (std::size_t i = 0; i < shells_.size(); ++i) {
       const Shells& s = shells_[i];
