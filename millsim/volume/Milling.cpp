@@ -143,7 +143,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
         };
         // Air first: once the burr has sunk in, most of its sphere is air
         // already, and a read is cheaper than the distance. In a leaf the
-        // run is scanned by a load and a compare a voxel (a tenth of #3's
+        // run is scanned by a load and a compare a voxel (4 % of #3's
         // frames went to the air test when it chose between the leaf and
         // the accessor at every voxel).
         if (data) {
