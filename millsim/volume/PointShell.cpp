@@ -1,5 +1,6 @@
 #include "millsim/volume/PointShell.h"
 
+#include "millsim/volume/FloorToInt.h"
 #include "millsim/volume/VoxelVolume.h"
 
 #include <algorithm>
@@ -42,13 +43,6 @@ template <class Accessor> struct AccessorFine {
     for (int n = 0; n < 8; ++n) c[n] = (*this)(x + (n & 1), y + ((n >> 1) & 1), z + (n >> 2));
   }
 };
-
-// floor(v) of a coordinate within the volume's index range: truncate, then
-// step down below zero (glm::floor, without SSE4.1, was most of trilinear()).
-int floorToInt(double v) {
-  const int t = int(v);
-  return t - (v < double(t));
-}
 
 // Trilinear value of the fine field at p (fine index units; integers are voxel centres).
 template <class Fine> double trilinear(const Fine& fine, const glm::dvec3& p) {
@@ -399,18 +393,18 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   const auto& tree = volume.grid().tree();
   using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
   const glm::ivec3 fHi = fLo + fDim - 1;
+  const DenseFine fine{fineScratch_.data(), fLo, fDim};
   for (int oz = fLo.z & ~7; oz <= fHi.z; oz += 8)
     for (int oy = fLo.y & ~7; oy <= fHi.y; oy += 8)
       for (int ox = fLo.x & ~7; ox <= fHi.x; ox += 8) {
         const openvdb::Coord origin(ox, oy, oz);
         const Leaf* leaf = tree.probeConstLeaf(origin);
         const glm::ivec3 lo = glm::max(glm::ivec3(ox, oy, oz), fLo), hi = glm::min(glm::ivec3(ox, oy, oz) + 7, fHi);
-        const DenseFine to{fineScratch_.data(), fLo, fDim};
         if (!leaf) {  // a tile: one value for the whole block
           const float tile = tree.getValue(origin);
           for (int i = lo.x; i <= hi.x; ++i)
             for (int j = lo.y; j <= hi.y; ++j) {
-              float* run = fineScratch_.data() + to.index(i, j, lo.z);
+              float* run = fineScratch_.data() + fine.index(i, j, lo.z);
               std::fill(run, run + (hi.z - lo.z) + 1, tile);
             }
           continue;
@@ -423,9 +417,8 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
         for (int i = lo.x; i <= hi.x; ++i)
           for (int j = lo.y; j <= hi.y; ++j)
             std::copy_n(data + ((i & 7) << 6) + ((j & 7) << 3) + (lo.z & 7), hi.z - lo.z + 1,
-                        fineScratch_.data() + to.index(i, j, lo.z));
+                        fineScratch_.data() + fine.index(i, j, lo.z));
       }
-  const DenseFine fine{fineScratch_.data(), fLo, fDim};
   // Coarse values of E, exactly as coarse() computes them (the densest fine
   // voxel). At scale 1 they are the fine voxels: read from F itself.
   const DenseFine coarseCopy{coarseScratch_.data(), eLo, eDim};

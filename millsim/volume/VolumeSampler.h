@@ -11,6 +11,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "millsim/volume/FloorToInt.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
@@ -136,13 +137,6 @@ private:
   static double inRange(double x) {
     constexpr double kFar = 1 << 30;
     return x > -kFar ? (x < kFar ? x : kFar) : -kFar;
-  }
-  // floor(x) for |x| ≤ 2^30: truncate, then step down below zero. Without
-  // SSE4.1 (Debian's baseline) std::floor is a dozen instructions; three of
-  // them were a fifth of a sample's fast path.
-  static int floorToInt(double x) {
-    const int t = static_cast<int>(x);
-    return t - (x < double(t));
   }
 
   // The buffers of the leaves read last, one slot per leaf position modulo
