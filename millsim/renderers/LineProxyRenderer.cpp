@@ -18,6 +18,7 @@
 #include "millsim/renderers/DeepestPoint.h"
 #include "millsim/renderers/FreeStart.h"
 #include "millsim/renderers/ProxyPoint.h"
+#include "millsim/renderers/WholeToolField.h"
 
 namespace millsim {
 
@@ -32,8 +33,23 @@ namespace {
 // let 0.058 N steps through in the lean (docs/algorithms.md, #1).
 constexpr double kBurrSlipVoxels = 0.2;
 
+// holdWholeTool: a part of the tool within this many voxels of the surface
+// touches (the proxy's projection settles to 1e-3 of a voxel).
+constexpr double kTouch = 0.02;
+
+// holdWholeTool: what a tracked shaft line's move must gain (voxels). A shaft
+// across a round rim is about as deep along many lines; followed freely, its
+// plane turned ±7° frame to frame and moved a wedged proxy 0.02 mm.
+constexpr double kShaftGain = 0.02;
+
 class LineProxyAlgorithm final : public HapticAlgorithm {
 public:
+  // The shaft's tracked deepest line (shaftSurface): its height on the axis,
+  // angle round it and where it crosses into material (from the axis).
+  struct ShaftLine {
+    double y = 0.0, phi = 0.0, t = 0.0;
+    bool active = false;
+  };
   struct Params {
     int vertices;
     int translationSteps;
@@ -43,6 +59,7 @@ public:
     ToolGeometry tool;
     bool burrSurface;  // the tip proxy keeps the burr's surface out (else the paper's centre vertex)
     bool shaftSurface;  // the shaft's deepest line pushes, force and torque (else the paper's torque only)
+    bool wholeTool;     // the burr's proxy holds the shaft out too (needs burrSurface and shaftSurface)
   };
 
   LineProxyAlgorithm(const Params& p, int proxyIterations)
@@ -130,9 +147,19 @@ public:
       const double s = firstFreeAlong(inside, h, p_.tool.shaftLength + p_.tool.tipRadius, 0.05 * h);
       if (s > 0.0) tip_.reset(c + dir * s);
     }
-    if (p_.burrSurface) tip_.update(burr_, c);
-    else tip_.update(scene, c);
+    const glm::dmat3 R = glm::mat3_cast(device.orientation);
+    if (p_.wholeTool) {
+      holdShaftPlane(scene, R);
+      tip_.update(tool_, c);
+    } else if (p_.burrSurface) {
+      tip_.update(burr_, c);
+    } else {
+      tip_.update(scene, c);
+    }
     const bool tipContact = tip_.inContact();
+    // Held by the shaft alone, the burr touches nothing: it neither cuts nor
+    // advances (holdWholeTool).
+    const bool burrTouches = tipContact && (!p_.wholeTool || tool_.burrDepth(tip_.position()) > -kTouch * scene.voxelSize());
     const glm::dvec3 proxyPoint = tipContact ? tip_.position() : c;
     // The outward contact normal at the tip proxy: where the burr touches
     // (BurrField), or at the centre vertex's proxy (paper).
@@ -154,8 +181,9 @@ public:
     // (t_offset in Fig. 6).
     glm::dvec3 drawTip = c;
     if (tipContact) drawTip = p_.burrSurface ? proxyPoint : proxyPoint + tipNormal * p_.tool.tipRadius;
-    const glm::dvec3 drawDir = p_.shaftSurface ? shaftSurface(scene, device, proxyPoint, out)
-                                               : shaftCentreline(scene, proxyPoint, dir, drawTip, out);
+    const glm::dvec3 drawDir = p_.wholeTool      ? shaftReaction(scene, R, proxyPoint, out)
+                               : p_.shaftSurface ? shaftSurface(scene, device, proxyPoint, out)
+                                                 : shaftCentreline(scene, proxyPoint, dir, drawTip, out);
     out.drawnTool.position = drawTip;
     out.drawnTool.orientation = rotationBetween(dir, drawDir) * device.orientation;
     // Only the burr of a tip in contact cuts: a free burr is drawn at the
@@ -166,11 +194,11 @@ public:
     // The advance accumulates while milling: the coverage stamp is
     // idempotent, so a burr that only ever reached one frame's feed past the
     // tangent position would stop cutting once that thin layer is gone.
-    out.burrCuts = tipContact;
+    out.burrCuts = burrTouches;
     out.burrCentre = drawTip;
     // Depth is measured from the current tangent position, so when the
     // proxy follows the receding surface the burr does not advance twice.
-    if (tipContact && in.milling) {
+    if (burrTouches && in.milling) {
       // The burr advances the way the hand pushes it (the spring's direction),
       // not along the contact normal: in the burr's own round pit the normal
       // hops between points of the rim, and measured along it the advance so
@@ -261,6 +289,35 @@ private:
   glm::dvec3 shaftSurface(const HapticScene& scene, const Pose& device, const glm::dvec3& tip, HapticOutput& out) {
     const glm::dmat3 R = glm::mat3_cast(device.orientation);
     const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
+    const double rho = p_.tool.shaftRadius;
+    const ShaftLine& line = findShaftLine(scene, R, tip);
+    const double depth = rho - line.t;
+    shaftContact_ = line.active && depth > 0.0;
+    if (!shaftContact_) return device.shaftDirection();
+    const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
+    const glm::dvec3 point = tip + line.y * axis + line.t * w;  // on the material's surface
+    // The burr's push (tip proxy − device) and the shaft's share one push as
+    // a rigid tool's (ContactShares.h). Summed, a shaft on a bowl's rim and
+    // the burr in its wall pushed twice where one push clears both; at right
+    // angles or beyond each pushes its own depth.
+    const glm::dvec3 burrPush = tip - device.position;
+    const BurrShaftShares shares = burrAndShaftShares(burrPush, -w, depth);
+    out.force = shares.burr > 0.0 ? p_.k * shares.burr * (burrPush / glm::length(burrPush)) : glm::dvec3(0.0);
+    const glm::dvec3 push = p_.k * shares.shaft * -w;
+    out.force += push;
+    out.torque += glm::cross(point - tip, push);
+    out.hasIntersection = true;
+    out.intersection = point;
+    out.contacts += 1;
+    return axis;
+  }
+
+  // The shaft's deepest line with the burr centre at `tip` (the tool turned
+  // by R): the tracked one searched near where it was, else seeded from the
+  // ring point deepest in material. Kept in shaftLine_ (active: within a
+  // voxel of touching).
+  const ShaftLine& findShaftLine(const HapticScene& scene, const glm::dmat3& R, const glm::dvec3& tip) {
+    const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
     const double h = scene.voxelSize(), rho = p_.tool.shaftRadius, y1 = p_.tool.shaftLength;
     auto refine = [&](ShaftLine line) {
       line.t = deepestOnShaft(scene, tip, R, rho, shaftY0_, y1, line.y, line.phi, line.t);
@@ -273,6 +330,15 @@ private:
       line = shaftLine_;
       line.t = std::min(line.t, 0.999 * rho);
       line = refine(line);
+      // holdWholeTool: the line keeps its angle unless turning gains more
+      // than kShaftGain voxels of depth at its new height (the angle of the
+      // whole tool's plane; docs/algorithms.md, Algorithm #1).
+      if (p_.wholeTool && line.active && line.t > 0.0 && line.phi != shaftLine_.phi) {
+        const double kept = lineCrossing(scene, tip + std::clamp(line.y, shaftY0_, y1) * axis,
+                                          R * glm::dvec3(std::cos(shaftLine_.phi), 0.0, std::sin(shaftLine_.phi)),
+                                          line.t, -rho, rho + 4.0 * h);
+        if (kept - line.t < kShaftGain * h) line.phi = shaftLine_.phi, line.t = kept;
+      }
     }
     // Not touching: seed from the ring point deepest in material, if any.
     if (!(line.active && rho - line.t > 0.0)) {
@@ -294,21 +360,52 @@ private:
       }
     }
     shaftLine_ = line;
-    const double depth = rho - line.t;
-    shaftContact_ = line.active && depth > 0.0;
-    if (!shaftContact_) return device.shaftDirection();
+    return shaftLine_;
+  }
+
+  // holdWholeTool: the shaft's deepest line where the tool rested last frame
+  // (the burr centre at its proxy, out of material), as the plane the proxy
+  // is held out of this frame (WholeToolField). A shaft found already in
+  // material — the hand moved it more than a voxel past a rim in one frame,
+  // or the plane's first-order step missed the rim's curve — puts the proxy
+  // out along the plane's normal first, and the proxy's own projection then
+  // settles the burr and the shaft together.
+  void holdShaftPlane(const HapticScene& scene, const glm::dmat3& R) {
+    tool_.clearShaftPlane();
+    shaftAt_ = tip_.position();
+    const ShaftLine& line = findShaftLine(scene, R, shaftAt_);
+    if (!line.active) return;
+    const double depth = p_.tool.shaftRadius - line.t;
     const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
-    const glm::dvec3 point = tip + line.y * axis + line.t * w;  // on the material's surface
-    // The burr's push (tip proxy − device) and the shaft's share one push as
-    // a rigid tool's (ContactShares.h). Summed, a shaft on a bowl's rim and
-    // the burr in its wall pushed twice where one push clears both; at right
-    // angles or beyond each pushes its own depth.
-    const glm::dvec3 burrPush = tip - device.position;
-    const BurrShaftShares shares = burrAndShaftShares(burrPush, -w, depth);
-    out.force = shares.burr > 0.0 ? p_.k * shares.burr * (burrPush / glm::length(burrPush)) : glm::dvec3(0.0);
-    const glm::dvec3 push = p_.k * shares.shaft * -w;
-    out.force += push;
-    out.torque += glm::cross(point - tip, push);
+    tool_.setShaftPlane(shaftAt_, w, depth);
+    if (depth > 0.0) tip_.placeInContact(tool_.projectToSurface(shaftAt_, 2.0 * scene.voxelSize()));
+  }
+
+  // holdWholeTool: the torque of the force the whole tool's proxy holds, F =
+  // k·(proxy − device). Where the burr and the shaft both touch, F is split
+  // between their normals (least squares, neither share pulling), where the
+  // shaft alone touches it is all the shaft's; the shaft's part acts at its
+  // contact point, the burr's through the burr centre. The drawn tool keeps
+  // the device's orientation, translated with the proxy.
+  glm::dvec3 shaftReaction(const HapticScene& scene, const glm::dmat3& R, const glm::dvec3& tip, HapticOutput& out) {
+    const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
+    const double tolerance = kTouch * scene.voxelSize();
+    shaftContact_ = tip_.inContact() && tool_.hasShaftPlane() && tool_.shaftDepth(tip) > -tolerance;
+    if (!shaftContact_) return axis;
+    const ShaftLine& line = shaftLine_;
+    const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
+    const glm::dvec3 point = tip + line.y * axis + (p_.tool.shaftRadius - tool_.shaftDepth(tip)) * w;  // on the plane
+    const glm::dvec3 ns = tool_.shaftNormal();
+    glm::dvec3 shaftForce = out.force;
+    if (tool_.burrDepth(tip) > -tolerance) {
+      const glm::dvec3 nb = burr_.contactNormal(tip);
+      const double g = glm::dot(nb, ns), fb = glm::dot(out.force, nb), fs = glm::dot(out.force, ns);
+      const double det = 1.0 - g * g;
+      double share = det > 1e-6 ? (fs - g * fb) / det : 0.5 * fs;  // the shaft's, along ns
+      if (det > 1e-6 && (fb - g * fs) / det < 0.0) share = fs;      // the burr's would pull: the shaft's alone
+      shaftForce = std::max(share, 0.0) * ns;
+    }
+    out.torque += glm::cross(point - tip, shaftForce);
     out.hasIntersection = true;
     out.intersection = point;
     out.contacts += 1;
@@ -383,18 +480,14 @@ private:
   ProxyPoint tip_;
   ProxyPoint shaft_;
   BurrField burr_;  // the scene dilated by the burr sphere (p_.burrSurface)
+  WholeToolField tool_{burr_};  // burr_ and the shaft's plane of this frame (p_.wholeTool)
+  glm::dvec3 shaftAt_{0.0};     // where the burr centre was when the shaft's plane was found
   glm::dvec3 prevTip_{0.0};
   bool cutting_ = false;        // the burr cut last frame, at cutCentre_
   bool startFree_ = true;       // the next step first moves a tip proxy that starts in material out of it
   glm::dvec3 cutCentre_{0.0};
   glm::dvec3 prevDir_{0.0, 1.0, 0.0};
   bool shaftContact_ = false;
-  // The shaft's tracked deepest line (shaftSurface): its height on the axis,
-  // angle round it and where it crosses into material (from the axis).
-  struct ShaftLine {
-    double y = 0.0, phi = 0.0, t = 0.0;
-    bool active = false;
-  };
   static constexpr int kRing = 8;  // seeds round each centreline vertex
   struct RingSeed {
     double phi;
@@ -427,7 +520,8 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
   return std::make_unique<LineProxyAlgorithm>(
       LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
                                  double(springConstant.get()), double(feedResistance.get()), tool,
-                                 feelBurrSurface.get(), feelShaftSurface.get()},
+                                 feelBurrSurface.get(), feelShaftSurface.get(),
+                                 feelBurrSurface.get() && feelShaftSurface.get() && holdWholeTool.get()},
       proxyIterations.get());
 }
 

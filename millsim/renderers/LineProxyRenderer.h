@@ -38,6 +38,14 @@ public:
                           "springConstant times its depth (force and torque); false: the paper's centreline "
                           "vertices, felt once the shaft has sunk its radius, and torque only (eq. 7-11)."};
 
+  SFBool holdWholeTool{this, "holdWholeTool", Access::InitializeOnly, false,
+                       "With feelBurrSurface and feelShaftSurface: the burr's proxy also keeps the shaft out of "
+                       "material, a god object for the whole tool at the device's orientation (the shaft's "
+                       "contact a plane found each frame where the tool rested): a tool wedged in a hole is "
+                       "lifted as a rigid one is. Not for milling: a burr in its own pit with the shaft on a "
+                       "rim jams and jumps (docs/algorithms.md). false: the shaft pushes from the burr's proxy "
+                       "by its depth there, its share capped at that depth (ContactShares.h)."};
+
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr advances into material at force / feedResistance (N·s/m).",
                          Range::openClosed(0, 1e6).in(quantity::linearStiffness)};

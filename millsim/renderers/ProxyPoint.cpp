@@ -222,12 +222,12 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     const double maxStep = params_.maxSlideVoxels * h, longest = std::min(maxStep, slideLeft);
     if (!(longest > 1e-3 * h)) break;  // this update's slides are spent
     if (len > longest) move *= longest / len;
-    glm::dvec3 next = projectToSurface(field, proxy_ + move, maxStep);
+    glm::dvec3 next = field.projectToSurface(proxy_ + move, maxStep);
     for (int k = 0; params_.refuseSinkingSlides && k < 4 && isFinite(next) && field.value(next) > 0.0 &&
                     field.outwardNormal(next) == glm::dvec3(0.0);
          ++k) {
       move *= 0.5;
-      next = projectToSurface(field, proxy_ + move, maxStep);
+      next = field.projectToSurface(proxy_ + move, maxStep);
     }
     if (!isFinite(next)) break;
     if (params_.refuseSinkingSlides && field.value(next) > 0.0 && field.outwardNormal(next) == glm::dvec3(0.0))
@@ -241,7 +241,7 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
       const double before = glm::length(probe - proxy_), gain = 1e-3 * h;
       for (int k = 0; k < 2 && isFinite(next) && !(glm::length(probe - next) < before - gain); ++k) {
         move *= 0.5;
-        next = projectToSurface(field, proxy_ + move, maxStep);
+        next = field.projectToSurface(proxy_ + move, maxStep);
       }
       if (!isFinite(next) || !(glm::length(probe - next) < before - gain)) break;  // no nearer point: stay
     }
@@ -251,7 +251,7 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
   // Milling may have removed the material under the proxy: follow the
   // receding surface towards the probe.
   if (!params_.recedeTowardsProbe && field.value(proxy_) < 0.0) {
-    const glm::dvec3 next = projectToSurface(field, proxy_, params_.maxSlideVoxels * h);
+    const glm::dvec3 next = field.projectToSurface(proxy_, params_.maxSlideVoxels * h);
     if (isFinite(next) && glm::dot(next - proxy_, probe - proxy_) > 0.0) proxy_ = next;
   }
   return proxy_;
@@ -292,10 +292,10 @@ bool ProxyPoint::findEntry(const ProxyField& field, const glm::dvec3& from, cons
   return false;
 }
 
-glm::dvec3 ProxyPoint::projectToSurface(const ProxyField& field, glm::dvec3 p, double maxStep) const {
+glm::dvec3 ProxyField::projectToSurface(glm::dvec3 p, double maxStep) const {
   for (int k = 0; k < 4; ++k) {
-    const double s = field.value(p);
-    const glm::dvec3 g = field.gradient(p);
+    const double s = value(p);
+    const glm::dvec3 g = gradient(p);
     const double gg = glm::dot(g, g);
     if (!(gg > 0.0) || !std::isfinite(gg)) break;
     glm::dvec3 step = -(s / gg) * g;

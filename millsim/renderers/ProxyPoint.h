@@ -38,6 +38,9 @@ public:
   // The normal a proxy in contact slides against, which sets the direction
   // of its force: the outward normal unless the field knows a better one.
   virtual glm::dvec3 contactNormal(const glm::dvec3& p) const { return outwardNormal(p); }
+  // p moved onto the field's zero set, at most maxStep a step: Newton steps
+  // along the gradient (a field of several parts may know a better way).
+  virtual glm::dvec3 projectToSurface(glm::dvec3 p, double maxStep) const;
 };
 
 // The scene's implicit surface s(p) itself.
@@ -163,7 +166,6 @@ private:
   // Where the segment from → to first enters material (half-voxel steps,
   // bisection, then eq. 1's fraction); false if it stays outside.
   bool findEntry(const ProxyField& field, const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& entry) const;
-  glm::dvec3 projectToSurface(const ProxyField& field, glm::dvec3 p, double maxStep) const;
 
   Params params_;
   glm::dvec3 proxy_{0.0};

@@ -119,13 +119,23 @@ protected:
   };
   // #2's and #3's earlier misses went with issue 14 (deepestPoints, pointShellScale 1), #1's ball with
   // BurrField::contactNormal.
-  static constexpr std::array<KnownMiss, 2> kKnownMisses{{
+  static constexpr std::array<KnownMiss, 5> kKnownMisses{{
       {"BarbicRenderer", "ball direction", 5.0,
        "the scale-1 point shell on the voxelised ball: 3.1 and 4.6 degrees at 2 of the 12 poses (0.15 mm in along "
        "(0.3, 1, 0.2), 0.05 mm in along (1, 0.2, 0.05)); RMS under 3 (Barbic.AtItsDefaultsAFlatFacePushesStraightOut"
        "AndABallAlongItsNormal)"},
       {"BarbicRenderer", "physical bowl direction", 4.0,
        "3.5 degrees RMS: the scale-1 point shell on the voxelised bowl (docs/accuracy.md, issue 14)"},
+      {"BarbicRenderer", "physical hole force", 0.3,
+       "25 % RMS: the penalty points' compliance in series with the coupling, and the wedge's shaft on the rim "
+       "(docs/accuracy.md, issue 14)"},
+      {"LineProxyRenderer", "physical hole force", 0.45,
+       "38 % RMS: the shaft's share is capped at its own depth (ContactShares.h), so the wedge's 30 degree poses "
+       "are pushed by the sum, not lifted; holdWholeTool lifts them (1.1 %) but jams in a milled pit "
+       "(docs/algorithms.md, issue 14)"},
+      {"SurfacePointRenderer", "physical hole force", 0.5,
+       "44 % RMS: its contacts' shares are capped at their own depths (ContactShares.h), so the wedge's 30 degree "
+       "poses are pushed by the sum, not lifted as a rigid tool is (docs/algorithms.md, issue 14)"},
   }};
   // The bound `ratio` must meet for this renderer; prints what a known miss excuses.
   double bound(const char* check, double strict, double ratio) const {
@@ -340,6 +350,20 @@ TEST_P(EveryRenderer, ABurrInABowlWithItsShaftOnTheRimIsPushedOutOnce) {
   ASSERT_TRUE(row);
   EXPECT_EQ(row->missed, 0.0) << "poses pressed into the bowl with no force";
   EXPECT_LT(row->forceRms, 0.10) << "force RMS relative to the reference's";
+}
+
+// A tool tilted 15° and 30° in a drilled hole, the burr pressed into the
+// wall and the bottom: at 30° the shaft meets the far rim too, a wedge, and a
+// rigid tool held at the device's orientation is lifted by several times the
+// depths (the physical reference). Issue 14's force goal (5 % RMS) on it.
+// Every renderer's default misses it (named waivers): each caps or softens
+// the wedge's lift, which in the default lesson's milled pit jammed and jumped
+// (docs/algorithms.md). #1's holdWholeTool meets it (LineProxy test below).
+TEST_P(EveryRenderer, AToolWedgedInADrilledHoleIsPushedOutAsARigidToolIs) {
+  const auto row = physicalScene("hole");
+  ASSERT_TRUE(row);
+  EXPECT_EQ(row->missed, 0.0) << "poses pressed into the hole with no force";
+  EXPECT_LE(row->forceRms, bound("physical hole force", 0.05, row->forceRms)) << "force RMS relative to the reference's";
 }
 
 // Issue 14's direction goal on its three surfaces, against the rigid tool at
@@ -563,6 +587,24 @@ TEST(BurrField, WhereTheBurrTouchesABallTheContactNormalIsWithinTwoDegreesRms) {
       EXPECT_LE(rms, 0.75 * maximiserRms);
     }
   }
+}
+
+// holdWholeTool: the burr's proxy keeps the shaft out too, so a tool wedged
+// in a drilled hole (the burr on the wall, the shaft on the far rim) is lifted
+// as a rigid tool held at the device's orientation is: issue 14's 5 % on the
+// physical suite's hole (1.1 % measured; 37.8 % with the default's capped
+// shares), and the rest of the suite within it as well (3.4 %).
+TEST(LineProxy, HoldingTheWholeToolLiftsAToolWedgedInAHoleAsARigidToolIs) {
+  const measure::RendererSpec spec{"LineProxyRenderer", {{"holdWholeTool", "true"}}};
+  measure::PhysicalConfig hole;
+  hole.scenes = {"hole"};
+  const auto holeRows = measure::measurePhysical(spec, 0.1e-3, hole);
+  ASSERT_FALSE(holeRows.empty());
+  EXPECT_EQ(holeRows.back().missed, 0.0);
+  EXPECT_LT(holeRows.back().forceRms, 0.05) << "hole: force RMS against the rigid tool";
+  EXPECT_LT(holeRows.back().directionRms, 3.0) << "hole: degrees RMS";
+  const auto all = measure::measurePhysical(spec, 0.1e-3);
+  EXPECT_LT(all.back().forceRms, 0.05) << "all scenes: force RMS against the rigid tool";
 }
 
 TEST(LineProxy, AFastPushDoesNotCarryTheProxyThroughAThinPlate) {
