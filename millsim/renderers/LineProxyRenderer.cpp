@@ -65,7 +65,8 @@ public:
   LineProxyAlgorithm(const Params& p, int proxyIterations)
       : p_(p),
         tip_(ProxyPoint::Params{proxyIterations, 2.0, p.burrSurface, p.burrSurface, p.burrSurface, p.burrSurface,
-                                p.burrSurface ? kBurrSlipVoxels : std::numeric_limits<double>::infinity()}),
+                                p.burrSurface ? kBurrSlipVoxels : std::numeric_limits<double>::infinity(),
+                                p.burrSurface}),
         shaft_(ProxyPoint::Params{proxyIterations, 2.0}),
         burr_(p.tool.tipRadius),
         before_(std::size_t(p.vertices)),

@@ -41,6 +41,10 @@ public:
   // p moved onto the field's zero set, at most maxStep a step: Newton steps
   // along the gradient (a field of several parts may know a better way).
   virtual glm::dvec3 projectToSurface(glm::dvec3 p, double maxStep) const;
+  // Whether a proxy held straight above `probe` may rest on a saddle (a ridge
+  // along which sliding either way brings it nearer): false unless the field
+  // knows (BurrField: only where the burr centre itself is in material).
+  virtual bool maySaddle(const glm::dvec3& /*probe*/) const { return false; }
 };
 
 // The scene's implicit surface s(p) itself.
@@ -88,6 +92,10 @@ public:
   // −(the fitted peak's direction) at c; the last one is cached as well.
   glm::dvec3 contactNormal(const glm::dvec3& c) const override;
   double voxelSize() const override;
+  // The dilated surface curves no tighter than the burr's radius, so a proxy
+  // r out of the material rests on a saddle only if the probe (the burr
+  // centre) is more than r below it: in material itself.
+  bool maySaddle(const glm::dvec3& probe) const override;
   // The unit direction from the centre to the burr's deepest point at the last
   // evaluation (where it touches, in contact).
   const glm::dvec3& deepestDirection() const { return direction_; }
@@ -135,6 +143,13 @@ public:
     // probe drifts (the burr in its own pit, leaning) otherwise slipped the
     // whole way at once, up to 0.2 mm (0.2 N) in a frame.
     double maxSlipVoxels = std::numeric_limits<double>::infinity();
+    // Leave a saddle: where the probe is straight below the proxy and the
+    // field says it may be one (maySaddle), try half a voxel to each side
+    // along the two tangents and slide on from the one nearest the probe, if
+    // nearer. A burr pressed past a convex edge straight down its bisector
+    // otherwise stays on the bisector (nothing tips it off), where a rigid
+    // burr slides onto a face (the physical suite's edge: 22° off).
+    bool leaveSaddles = false;
   };
   ProxyPoint() = default;
   explicit ProxyPoint(Params p) : params_(p) {}
@@ -166,6 +181,9 @@ private:
   // Where the segment from → to first enters material (half-voxel steps,
   // bisection, then eq. 1's fraction); false if it stays outside.
   bool findEntry(const ProxyField& field, const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& entry) const;
+  // A saddle's way off (ProxyPoint::Params::leaveSaddles): the surface point
+  // half a voxel to one side nearest the probe, if nearer than the proxy.
+  bool saddleExit(const ProxyField& field, const glm::dvec3& probe, const glm::dvec3& n, glm::dvec3& exit) const;
 
   Params params_;
   glm::dvec3 proxy_{0.0};

@@ -51,6 +51,7 @@ public:
   // steps on whichever part answers alternated between the two in a wedge
   // and left the burr half a voxel in a hole's wall.
   glm::dvec3 projectToSurface(glm::dvec3 p, double maxStep) const override;
+  bool maySaddle(const glm::dvec3& probe) const override { return burr_.maySaddle(probe); }
 
 private:
   bool shaftAnswers(const glm::dvec3& p) const { return hasPlane_ && shaftDepth(p) > burrDepth(p); }

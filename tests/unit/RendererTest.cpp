@@ -607,6 +607,20 @@ TEST(LineProxy, HoldingTheWholeToolLiftsAToolWedgedInAHoleAsARigidToolIs) {
   EXPECT_LT(all.back().forceRms, 0.05) << "all scenes: force RMS against the rigid tool";
 }
 
+// A burr pushed past a convex edge straight down its bisector (its centre
+// 0.1 mm inside the quarter-space): a rigid burr slides onto a face; the
+// proxy, held straight above the probe, rested on the bisector, a saddle,
+// 45° off the reference's force (edge 22.5° RMS). ProxyPoint's leaveSaddles
+// takes it off: 3.9° RMS measured, the rest the last poses mid-slide.
+TEST(LineProxy, ABurrPushedPastAConvexEdgeSlidesOffItsBisectorOntoAFace) {
+  measure::PhysicalConfig edge;
+  edge.scenes = {"edge"};
+  const auto rows = measure::measurePhysical({"LineProxyRenderer", {}}, 0.1e-3, edge);
+  ASSERT_FALSE(rows.empty());
+  EXPECT_LT(rows.back().directionRms, 6.0) << "edge: degrees RMS against the rigid burr";
+  EXPECT_LT(rows.back().forceRms, 0.05) << "edge: force RMS";
+}
+
 TEST(LineProxy, AFastPushDoesNotCarryTheProxyThroughAThinPlate) {
   LineProxyRenderer r;
   // A plate two voxels thick around y = 0.
