@@ -56,6 +56,10 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
                                                         MaterialBlocks(vox),
                                                         Miller(vox, float(iso), tissues), tissues,
                                                         DirtyBlocks(vox.dims())}));
+  Volume& added = *volumes_.back();
+  added.axisAligned = lin[0][1] == 0.0 && lin[0][2] == 0.0 && lin[1][0] == 0.0 && lin[1][2] == 0.0 &&
+                      lin[2][0] == 0.0 && lin[2][1] == 0.0;
+  added.worldToIndexScale = glm::dvec3(lin[0][0], lin[1][1], lin[2][2]);
   // The haptic sampler's window (VolumeSampler::focus): 24³ voxels hold a
   // 0.6 mm burr's samples at 0.1 mm voxels with 3 voxels to move before it
   // is copied again; a reach it cannot hold is sampled as before.
@@ -70,12 +74,11 @@ double VoxelScene::field(const glm::dvec3& world) const {
   // instructions a call of its own; #1's §8.2 frames −1.7 %, callgrind).
   if (volumes_.size() == 1) {
     const Volume& v = *volumes_.front();
-    return double(v.sampler.density(v.worldToIndexLinear * world + v.worldToIndexOffset)) - v.placement.iso;
+    return double(v.sampler.density(v.toIndex(world))) - v.placement.iso;
   }
   double best = -std::numeric_limits<double>::infinity();
   for (const auto& v : volumes_) {
-    const glm::dvec3 idx = v->worldToIndexLinear * world + v->worldToIndexOffset;
-    best = std::max(best, double(v->sampler.density(idx)) - v->placement.iso);
+    best = std::max(best, double(v->sampler.density(v->toIndex(world))) - v->placement.iso);
   }
   return volumes_.empty() ? -1.0 : best;
 }
@@ -97,7 +100,7 @@ glm::dvec3 VoxelScene::gradient(const glm::dvec3& world) const {
   double best = -std::numeric_limits<double>::infinity();
   glm::dvec3 g(0.0);
   for (const auto& v : volumes_) {
-    const glm::dvec3 idx = v->worldToIndexLinear * world + v->worldToIndexOffset;
+    const glm::dvec3 idx = v->toIndex(world);
     const double s = double(v->sampler.density(idx)) - v->placement.iso;
     if (s > best) {
       best = s;

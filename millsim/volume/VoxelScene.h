@@ -48,6 +48,14 @@ public:
     // call's blocks instead (Shell::pending).
     DirtyBlocks changed;
     std::uint64_t millEpoch = 0;
+    // worldToIndexLinear is diagonal (a volume scaled and moved, not turned:
+    // every shipped lesson) and these are its diagonal: three products
+    // instead of nine a sample, the same result for finite points.
+    bool axisAligned = false;
+    glm::dvec3 worldToIndexScale{0.0};
+    glm::dvec3 toIndex(const glm::dvec3& world) const {
+      return axisAligned ? world * worldToIndexScale + worldToIndexOffset : worldToIndexLinear * world + worldToIndexOffset;
+    }
   };
 
   VoxelScene();

@@ -213,6 +213,29 @@ TEST(VoxelScene, FieldFollowsMillingInTheFocusWindow) {
   EXPECT_EQ(differ, 0);
 }
 
+// A volume scaled and moved (not turned), as every shipped lesson's, is
+// sampled through the diagonal of its world-to-index map: the same values as
+// through the whole matrix; a turned one goes through the matrix.
+TEST(VoxelScene, AScaledAndMovedVolumeSamplesAsThroughTheWholeMap) {
+  auto v = ball(32, 12.0);
+  VoxelScene scene;
+  scene.addVolume(v, glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(0.01, -0.02, 0.003)), glm::dvec3(1.5, 0.8, 2.0)),
+                  0.5);
+  const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0, 1, 0));
+  scene.addVolume(v, turn, 0.5);
+  const auto& moved = scene.volume(0);
+  ASSERT_TRUE(moved.axisAligned);
+  EXPECT_FALSE(scene.volume(1).axisAligned);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  int differ = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const glm::dvec3 p(u(rng), u(rng), u(rng));
+    differ += moved.toIndex(p) != moved.worldToIndexLinear * p + moved.worldToIndexOffset;
+  }
+  EXPECT_EQ(differ, 0);
+}
+
 TEST(ToothPhantom, IsDeterministic) {
   const ToothPhantomOptions small{{64, 64, 44}, 0.4e-3, false};
   EXPECT_EQ(makeToothPhantom(small).contentHash(), makeToothPhantom(small).contentHash());
