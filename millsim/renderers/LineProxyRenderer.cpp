@@ -373,13 +373,13 @@ private:
   // settles the burr and the shaft together.
   void holdShaftPlane(const HapticScene& scene, const glm::dmat3& R) {
     tool_.clearShaftPlane();
-    shaftAt_ = tip_.position();
-    const ShaftLine& line = findShaftLine(scene, R, shaftAt_);
+    const glm::dvec3 at = tip_.position();
+    const ShaftLine& line = findShaftLine(scene, R, at);
     if (!line.active) return;
     const double depth = p_.tool.shaftRadius - line.t;
     const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
-    tool_.setShaftPlane(shaftAt_, w, depth);
-    if (depth > 0.0) tip_.placeInContact(tool_.projectToSurface(shaftAt_, 2.0 * scene.voxelSize()));
+    tool_.setShaftPlane(at, w, depth);
+    if (depth > 0.0) tip_.placeInContact(tool_.projectToSurface(at, 2.0 * scene.voxelSize()));
   }
 
   // holdWholeTool: the torque of the force the whole tool's proxy holds, F =
@@ -482,7 +482,6 @@ private:
   ProxyPoint shaft_;
   BurrField burr_;  // the scene dilated by the burr sphere (p_.burrSurface)
   WholeToolField tool_{burr_};  // burr_ and the shaft's plane of this frame (p_.wholeTool)
-  glm::dvec3 shaftAt_{0.0};     // where the burr centre was when the shaft's plane was found
   glm::dvec3 prevTip_{0.0};
   bool cutting_ = false;        // the burr cut last frame, at cutCentre_
   bool startFree_ = true;       // the next step first moves a tip proxy that starts in material out of it

@@ -203,7 +203,17 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     if (findEntry(field, proxy_, probe, entry)) proxy_ = entry;
   }
   glm::dvec3 previousNormal(0.0);  // the face the last slide was held by
+  // Params::leaveSaddles: a stalled slide on a saddle's ridge goes off it,
+  // once an update, and the slides go on from there.
   bool leftSaddle = false;
+  auto leaveSaddle = [&](const glm::dvec3& n) {
+    glm::dvec3 off;
+    if (!params_.leaveSaddles || leftSaddle || !field.maySaddle(probe) || !saddleExit(field, probe, n, off)) return false;
+    leftSaddle = true;
+    slideLeft -= glm::length(off - proxy_);
+    proxy_ = off;
+    return true;
+  };
   for (int it = 0; it < params_.slideIterations; ++it) {
     const glm::dvec3 n = field.contactNormal(proxy_);
     if (n == glm::dvec3(0.0)) break;  // no gradient (homogeneous material): stay put
@@ -222,11 +232,7 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     previousNormal = n;
     const double len = glm::length(move);
     if (len < 1e-3 * h) {
-      glm::dvec3 off;
-      if (!params_.leaveSaddles || leftSaddle || !field.maySaddle(probe) || !saddleExit(field, probe, n, off)) break;
-      leftSaddle = true;  // once an update: the slides go on from there
-      slideLeft -= glm::length(off - proxy_);
-      proxy_ = off;
+      if (!leaveSaddle(n)) break;
       continue;
     }
     const double maxStep = params_.maxSlideVoxels * h, longest = std::min(maxStep, slideLeft);
@@ -253,12 +259,8 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
         move *= 0.5;
         next = field.projectToSurface(proxy_ + move, maxStep);
       }
-      if (!isFinite(next) || !(glm::length(probe - next) < before - gain)) {  // no nearer point: stay
-        glm::dvec3 off;  // unless it is a saddle's ridge (Params::leaveSaddles)
-        if (!params_.leaveSaddles || leftSaddle || !field.maySaddle(probe) || !saddleExit(field, probe, n, off)) break;
-        leftSaddle = true;
-        slideLeft -= glm::length(off - proxy_);
-        proxy_ = off;
+      if (!isFinite(next) || !(glm::length(probe - next) < before - gain)) {  // no nearer point: stay,
+        if (!leaveSaddle(n)) break;                                             // unless on a saddle
         continue;
       }
     }

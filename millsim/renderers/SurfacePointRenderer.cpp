@@ -154,11 +154,11 @@ private:
   // kHeldTurn a frame, towards where the centre's way out is shorter by
   // more than 0.002 voxels, measured 0.05 rad to either side of it in two
   // directions (0.02 voxels stalled it 22° off: near a face's normal a
-  // turn gains only 1.5 µm). Pushed past a convex edge straight down its bisector the
-  // held line stayed on the bisector, a saddle (the way out is longest
-  // there among its neighbours), where a rigid burr slides onto a face: 45°
-  // off on those poses. Elsewhere the held line is where the way out is
-  // shortest, and it stays put. `t.t` is the held line's crossing (≤ 0).
+  // turn gains only 1.5 µm). Pushed past a convex edge straight down its
+  // bisector the held line stayed on the bisector, a saddle (the way out is
+  // longest there among its neighbours), where a rigid burr slides onto a
+  // face: 45° off on those poses. Elsewhere the held line is where the way
+  // out is shortest, and it stays put. `t.t` is the held line's crossing (≤ 0).
   void turnHeldLine(const HapticScene& scene, const glm::dvec3& c, double h, Track& t) const {
     constexpr double kHeldTurn = 0.05;  // rad a frame, as sphereContact's tracked lines
     const glm::dvec3 t1 = glm::normalize(glm::cross(t.u, std::abs(t.u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
