@@ -540,7 +540,11 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
 FrameCostEstimate LineProxyRenderer::estimateFrameCost(const FrameCostContext&) const {
   constexpr double kNsPerSample = 55.0;
   const long perEvaluation = feelBurrSurface.get() ? 45 : 1;
-  const long burr = perEvaluation * (10L + 12L * proxyIterations.get());
+  // Each tangent-plane step: three tries of a projection of up to 4 Newton
+  // steps; holdWholeTool's projection out of the burr and the shaft's plane
+  // takes up to 6 (WholeToolField::projectToSurface).
+  const bool wholeTool = feelBurrSurface.get() && feelShaftSurface.get() && holdWholeTool.get();
+  const long burr = perEvaluation * (10L + (wholeTool ? 18L : 12L) * proxyIterations.get());
   const long shaft = feelShaftSurface.get() ? long(vertexCount.get()) * 8L + 200L
                                             : long(vertexCount.get()) * (1L + translationSteps.get() + rotationSteps.get());
   const std::string shaftModel = feelShaftSurface.get() ? "vertexCount x 8 ring seeds + 200 for the shaft's deepest line"
@@ -548,7 +552,8 @@ FrameCostEstimate LineProxyRenderer::estimateFrameCost(const FrameCostContext&) 
                                                           "first shaft contact";
   return {double(burr + shaft) * kNsPerSample * 1e-9,
           std::to_string(burr + shaft) + " samples (" + std::to_string(burr) + " for the burr's proxy: " +
-              std::to_string(perEvaluation) + " per evaluation x (10 + 12 x proxyIterations); " + shaftModel + ") x " +
+              std::to_string(perEvaluation) + " per evaluation x (10 + " + (wholeTool ? "18" : "12") +
+              " x proxyIterations); " + shaftModel + ") x " +
               formatNumber(kNsPerSample) + " ns",
           feelShaftSurface.get() ? "lower proxyIterations or vertexCount" : "lower vertexCount, translationSteps or rotationSteps"};
 }
