@@ -618,6 +618,38 @@ TEST(LineProxy, HoldingTheWholeToolLiftsAToolWedgedInAHoleAsARigidToolIs) {
   EXPECT_LT(all.back().forceRms, 0.05) << "all scenes: force RMS against the rigid tool";
 }
 
+// holdWholeTool's plane and joint projection on bad input: a tool tilted
+// into a hole just wider than its burr (the shaft on the rim, a wedge), then
+// NaN, a flip, a jump of thousands of voxels and back into the wedge: every
+// output finite. (Back from the jump the proxy is held where the straight
+// way back entered the slab, hundreds of newtons off, as a god object that
+// cannot tunnel is; the safety layer clamps what reaches a device.)
+TEST(LineProxy, HoldingTheWholeToolNeverGivesNonFiniteOutput) {
+  const auto node = measure::makeRenderer({"LineProxyRenderer", {{"holdWholeTool", "true"}}});
+  const double hole = 0.65e-3;  // the burr's radius is 0.5 mm
+  Rig rig(analytic(64, [&](const glm::dvec3& p) { return std::max(p.y, hole - std::hypot(p.x, p.z)); }), *node);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  rig.approach(tilted({0, 2e-3, 0}, 0.35), tilted({-0.2e-3, -1.2e-3, 0}, 0.35));
+  const Pose poses[] = {
+      tilted({-0.3e-3, -1.3e-3, 0}, 0.4),  // deeper into the wedge
+      vertical({nan, 0, 0}),
+      Pose{{0, -1e-3, 0}, glm::dquat(nan, 0, 0, 0)},
+      Pose{{0, -1e-3, 0}, glm::angleAxis(M_PI, glm::dvec3(1, 0, 0))},  // a 180° flip in the hole
+      vertical({0.3, -0.2, 0.1}),                                       // a jump of thousands of voxels
+      tilted({-0.3e-3, -1.3e-3, 0}, 0.4),                               // straight back into the wedge
+      tilted({-0.3e-3, -1.3e-3, 0}, 0.4),
+  };
+  bool first = true;
+  for (const Pose& p : poses) {
+    const auto out = rig.step(p);
+    EXPECT_TRUE(finite(out));
+    if (first) {
+      EXPECT_EQ(out.contacts, 2) << "the burr on the wall and the shaft on the rim: the wedge";
+    }
+    first = false;
+  }
+}
+
 TEST(LineProxy, AFastPushDoesNotCarryTheProxyThroughAThinPlate) {
   LineProxyRenderer r;
   // A plate two voxels thick around y = 0.
