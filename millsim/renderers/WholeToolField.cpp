@@ -1,5 +1,6 @@
 #include "millsim/renderers/WholeToolField.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
