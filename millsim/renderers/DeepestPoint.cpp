@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/math/Pose.h"
 
 namespace millsim {
 
@@ -123,8 +124,8 @@ double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, gl
     // Towards the deepest line nearby, each move gaining at least kGain
     // voxels: at an edge a line a few degrees off is much shallower, while in
     // a burr's own round pit, about as deep along many lines, u stays put.
-    const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    const glm::dvec3 t2 = glm::cross(u, t1), u0 = u;
+    const auto [t1, t2] = tangentsOf(u);
+    const glm::dvec3 u0 = u;
     double guess = tGuess;
     auto dir = [&](double a, double b) {
       return glm::normalize(u0 + std::tan(std::clamp(a, -1.2, 1.2)) * t1 + std::tan(std::clamp(b, -1.2, 1.2)) * t2);
@@ -159,8 +160,7 @@ double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, gl
   // the line (else a rim or a crease lies in between), faded out towards 40°
   // and towards the line's own depth of zero (below).
   if (!(t0 > 0.0 && t0 < r)) return t0;
-  const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-  const glm::dvec3 t2 = glm::cross(u, t1);
+  const auto [t1, t2] = tangentsOf(u);
   const double span = std::tan(std::min(0.6, 2.0 * h / t0));
   const glm::dvec3 side[4] = {t1, -t1, t2, -t2};
   glm::dvec3 q[4];

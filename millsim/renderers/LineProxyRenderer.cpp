@@ -183,7 +183,7 @@ public:
     glm::dvec3 drawTip = c;
     if (tipContact) drawTip = p_.burrSurface ? proxyPoint : proxyPoint + tipNormal * p_.tool.tipRadius;
     const glm::dvec3 drawDir = p_.wholeTool      ? shaftReaction(scene, R, proxyPoint, out)
-                               : p_.shaftSurface ? shaftSurface(scene, device, proxyPoint, out)
+                               : p_.shaftSurface ? shaftSurface(scene, device, R, proxyPoint, out)
                                                  : shaftCentreline(scene, proxyPoint, dir, drawTip, out);
     out.drawnTool.position = drawTip;
     out.drawnTool.orientation = rotationBetween(dir, drawDir) * device.orientation;
@@ -287,8 +287,8 @@ private:
   // its tip until the shaft is out (eq. 12–13) divides the depth by the
   // contact's height, and a contact just above the burr, on its own pit's rim,
   // turned the drawn tool 7.6° in a frame in the §8.2 procedure.
-  glm::dvec3 shaftSurface(const HapticScene& scene, const Pose& device, const glm::dvec3& tip, HapticOutput& out) {
-    const glm::dmat3 R = glm::mat3_cast(device.orientation);
+  glm::dvec3 shaftSurface(const HapticScene& scene, const Pose& device, const glm::dmat3& R, const glm::dvec3& tip,
+                          HapticOutput& out) {
     const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
     const double rho = p_.tool.shaftRadius;
     const ShaftLine& line = findShaftLine(scene, R, tip);

@@ -90,8 +90,7 @@ void BurrField::evaluate(const glm::dvec3& c) const {
   // one-voxel density ramp, and their direction leans towards the diagonals by
   // several degrees where the surface is oblique to the voxel axes.
   for (const auto& [a, tanA] : kTanSteps) {
-    const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    const glm::dvec3 t2 = glm::cross(u, t1);
+    const auto [t1, t2] = tangentsOf(u);
     double step[2] = {0.0, 0.0};
     const glm::dvec3 axes[2] = {t1, t2};
     for (int i = 0; i < 2; ++i) {
@@ -128,8 +127,7 @@ glm::dvec3 BurrField::contactNormal(const glm::dvec3& c) const {
   glm::dvec3 u = direction_;
   const double along = glm::length(gradient_);  // s's slope along the maximiser's line
   for (int round = 0; along > 0.0 && round < 2; ++round) {  // a third moved the ball's figure by 0.01°
-    const glm::dvec3 t1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    const glm::dvec3 t2 = glm::cross(u, t1);
+    const auto [t1, t2] = tangentsOf(u);
     Eigen::Matrix<double, kFitSamples, 1> s;
     for (int i = 0; i < kFitSamples; ++i)
       s[i] = scene.field(c + radius_ * glm::normalize(u + std::tan(kPeakFit.x[i]) * t1 + std::tan(kPeakFit.y[i]) * t2));
@@ -279,8 +277,7 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
 bool ProxyPoint::saddleExit(const ProxyField& field, const glm::dvec3& probe, const glm::dvec3& n,
                             glm::dvec3& exit) const {
   const double h = field.voxelSize();
-  const glm::dvec3 t1 = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-  const glm::dvec3 t2 = glm::cross(n, t1);
+  const auto [t1, t2] = tangentsOf(n);
   // A full slide (maxSlideVoxels) to each side: near a saddle the distance
   // to the probe falls only as the square of the step (half a voxel off the
   // physical suite's edge gained 0.4 µm, under the voxelised surface's

@@ -11,6 +11,7 @@
 
 #include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
+#include "millsim/math/Pose.h"
 #include "millsim/renderers/ContactShares.h"
 #include "millsim/renderers/DeepestPoint.h"
 
@@ -161,8 +162,7 @@ private:
   // out is shortest, and it stays put. `t.t` is the held line's crossing (≤ 0).
   void turnHeldLine(const HapticScene& scene, const glm::dvec3& c, double h, Track& t) const {
     constexpr double kHeldTurn = 0.05;  // rad a frame, as sphereContact's tracked lines
-    const glm::dvec3 t1 = glm::normalize(glm::cross(t.u, std::abs(t.u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-    const glm::dvec3 t2 = glm::cross(t.u, t1);
+    const auto [t1, t2] = tangentsOf(t.u);
     double best = t.t + 0.002 * h;  // a crossing nearer zero is a shorter way out
     glm::dvec3 to(0.0);
     double at = t.t;

@@ -63,7 +63,7 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
   // The haptic sampler's window (VolumeSampler::focus): 24³ voxels hold a
   // 0.6 mm burr's samples at 0.1 mm voxels with 3 voxels to move before it
   // is copied again; a reach it cannot hold is sampled as before.
-  volumes_.back()->sampler.enableWindow(kWindowEdge);
+  added.sampler.enableWindow(kWindowEdge);
   const glm::dvec3 h = vox.voxelSize() * scale;
   const double smallest = std::min({h.x, h.y, h.z});
   voxelSize_ = voxelSize_ > 0.0 ? std::min(voxelSize_, smallest) : smallest;
@@ -85,12 +85,12 @@ double VoxelScene::field(const glm::dvec3& world) const {
 
 void VoxelScene::focus(const glm::dvec3& world, double reach) {
   for (const auto& v : volumes_)
-    v->sampler.focus(v->worldToIndexLinear * world + v->worldToIndexOffset, reach * v->indexPerWorld);
+    v->sampler.focus(v->toIndex(world), reach * v->indexPerWorld);
 }
 
 bool VoxelScene::mayHaveMaterialNear(const glm::dvec3& world, double radius) const {
   for (const auto& v : volumes_)
-    if (v->material.mayHaveMaterialNear(v->worldToIndexLinear * world + v->worldToIndexOffset,
+    if (v->material.mayHaveMaterialNear(v->toIndex(world),
                                         radius * v->indexPerWorld))
       return true;
   return false;
@@ -139,7 +139,7 @@ const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
 double VoxelScene::hardness(const glm::dvec3& world) const {
   for (const auto& v : volumes_) {
     if (!v->tissues) continue;
-    const glm::dvec3 idx = glm::round(v->worldToIndexLinear * world + v->worldToIndexOffset);
+    const glm::dvec3 idx = glm::round(v->toIndex(world));
     const glm::ivec3 dims = v->voxels->dims();
     if (!(idx.x >= 0 && idx.y >= 0 && idx.z >= 0 && idx.x < dims.x && idx.y < dims.y && idx.z < dims.z)) continue;
     const int label = v->tissues->labelAt(int(idx.x), int(idx.y), int(idx.z));
