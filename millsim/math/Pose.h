@@ -28,7 +28,9 @@ glm::dquat rotationBetween(const glm::dvec3& a, const glm::dvec3& b);
 
 // Two unit vectors perpendicular to unit n and to each other: t1 = n × the
 // world axis least aligned with n (normalised), t2 = n × t1. The tangent
-// plane the renderers' sphere, line and slide searches step in.
+// plane the renderers' sphere, line and slide searches step in. Callers name
+// the two (`const glm::dvec3 t1 = b.t1`), not `auto [t1, t2]`: clang 14, the
+// ASan stage's compiler, cannot capture a structured binding in a lambda.
 struct Tangents {
   glm::dvec3 t1, t2;
 };

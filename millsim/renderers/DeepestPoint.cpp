@@ -124,7 +124,8 @@ double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, gl
     // Towards the deepest line nearby, each move gaining at least kGain
     // voxels: at an edge a line a few degrees off is much shallower, while in
     // a burr's own round pit, about as deep along many lines, u stays put.
-    const auto [t1, t2] = tangentsOf(u);
+    const Tangents basis = tangentsOf(u);
+    const glm::dvec3 t1 = basis.t1, t2 = basis.t2;
     const glm::dvec3 u0 = u;
     double guess = tGuess;
     auto dir = [&](double a, double b) {
@@ -160,7 +161,8 @@ double sphereContact(const HapticScene& scene, const glm::dvec3& c, double r, gl
   // the line (else a rim or a crease lies in between), faded out towards 40°
   // and towards the line's own depth of zero (below).
   if (!(t0 > 0.0 && t0 < r)) return t0;
-  const auto [t1, t2] = tangentsOf(u);
+  const Tangents basis = tangentsOf(u);
+  const glm::dvec3 t1 = basis.t1, t2 = basis.t2;
   const double span = std::tan(std::min(0.6, 2.0 * h / t0));
   const glm::dvec3 side[4] = {t1, -t1, t2, -t2};
   glm::dvec3 q[4];

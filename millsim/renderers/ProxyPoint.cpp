@@ -90,7 +90,8 @@ void BurrField::evaluate(const glm::dvec3& c) const {
   // one-voxel density ramp, and their direction leans towards the diagonals by
   // several degrees where the surface is oblique to the voxel axes.
   for (const auto& [a, tanA] : kTanSteps) {
-    const auto [t1, t2] = tangentsOf(u);
+    const Tangents basis = tangentsOf(u);
+    const glm::dvec3 t1 = basis.t1, t2 = basis.t2;
     double step[2] = {0.0, 0.0};
     const glm::dvec3 axes[2] = {t1, t2};
     for (int i = 0; i < 2; ++i) {
@@ -127,7 +128,8 @@ glm::dvec3 BurrField::contactNormal(const glm::dvec3& c) const {
   glm::dvec3 u = direction_;
   const double along = glm::length(gradient_);  // s's slope along the maximiser's line
   for (int round = 0; along > 0.0 && round < 2; ++round) {  // a third moved the ball's figure by 0.01°
-    const auto [t1, t2] = tangentsOf(u);
+    const Tangents basis = tangentsOf(u);
+    const glm::dvec3 t1 = basis.t1, t2 = basis.t2;
     Eigen::Matrix<double, kFitSamples, 1> s;
     for (int i = 0; i < kFitSamples; ++i)
       s[i] = scene.field(c + radius_ * glm::normalize(u + std::tan(kPeakFit.x[i]) * t1 + std::tan(kPeakFit.y[i]) * t2));
@@ -277,7 +279,8 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
 bool ProxyPoint::saddleExit(const ProxyField& field, const glm::dvec3& probe, const glm::dvec3& n,
                             glm::dvec3& exit) const {
   const double h = field.voxelSize();
-  const auto [t1, t2] = tangentsOf(n);
+  const Tangents basis = tangentsOf(n);
+  const glm::dvec3 t1 = basis.t1, t2 = basis.t2;
   // A full slide (maxSlideVoxels) to each side: near a saddle the distance
   // to the probe falls only as the square of the step (half a voxel off the
   // physical suite's edge gained 0.4 µm, under the voxelised surface's

@@ -162,7 +162,8 @@ private:
   // out is shortest, and it stays put. `t.t` is the held line's crossing (≤ 0).
   void turnHeldLine(const HapticScene& scene, const glm::dvec3& c, double h, Track& t) const {
     constexpr double kHeldTurn = 0.05;  // rad a frame, as sphereContact's tracked lines
-    const auto [t1, t2] = tangentsOf(t.u);
+    const Tangents basis = tangentsOf(t.u);
+    const glm::dvec3 t1 = basis.t1, t2 = basis.t2;
     double best = t.t + 0.002 * h;  // a crossing nearer zero is a shorter way out
     glm::dvec3 to(0.0);
     double at = t.t;
