@@ -63,8 +63,15 @@ constexpr const char* kRings =
 // deepestPoints FALSE (docs/stability.md, 1 and 2).
 const std::vector<Waiver>& waivers() {
   static const std::vector<Waiver> w{
-      // BarbicRenderer (#3): ringing, one case of the soak grid, with dropped samples.
-      {"BarbicRenderer", "limit cycle:", "slide-100mm/s+5%drop", "0.55/2/135", kRings},
+      // BarbicRenderer (#3): ringing on the heavy, lightly damped grip of the
+      // soak grid while sliding at 50 mm/s, 11 and 13 µm p-p (the bound is
+      // 10): rigidContact makes the felt stiffness the coupling's 2000 N/m
+      // instead of about 1850 in series with the penalty points; with it
+      // FALSE these rang at 5.0 and 5.6 µm. (The 100 mm/s slide with
+      // dropped samples this waiver named before rings at 5.4 µm since the
+      // scale-1 shell: no longer waived.)
+      {"BarbicRenderer", "limit cycle:", "slide-50mm/s", "0.55/2/135", kRings},
+      {"BarbicRenderer", "limit cycle:", "slide-50mm/s+5%drop", "0.55/2/135", kRings},
   };
   return w;
 }
