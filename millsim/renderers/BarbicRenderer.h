@@ -8,9 +8,9 @@
 // virtual coupling to the device are linearised and the 6×6 quasi-static
 // system (net force and torque on the tool = 0) is solved for the tool's
 // change of pose. The user feels the coupling between the new tool pose and
-// the device — by default scaled up by the tool's penalty penetration, as a
-// rigid contact would push (rigidContact) — and the tool is drawn where it
-// is coupled, on the surface.
+// the device — by default with what the tool's penalty penetration takes
+// away added back, as a rigid contact would push (rigidContact) — and the
+// tool is drawn where it is coupled, on the surface.
 #include "millsim/haptics/HapticsRenderer.h"
 
 namespace millsim {
@@ -59,9 +59,10 @@ public:
                  "Cull the point shell with box tests against the tool's oriented box; false tests every point "
                  "(the paper's timings imply this; for comparison only)."};
   SFBool rigidContact{this, "rigidContact", Access::InitializeOnly, true,
-                      "Feel the contact as rigid: the coupling's force and torque scaled up by couplingStiffness x "
-                      "the tool's deepest penalty penetration, what a tool held at the surface would give. FALSE: "
-                      "the paper's coupling wrench, short by that penetration (12 % RMS force error at 0.1 mm voxels)."};
+                      "Feel the contact as rigid: the coupling's wrench plus couplingStiffness x the translation "
+                      "that takes the tool out of its burr's and its shaft's penalty penetrations (at most the "
+                      "deeper one), what a tool held at the surface would give. FALSE: the paper's coupling "
+                      "wrench, short by that penetration (12 % RMS force error at 0.1 mm voxels)."};
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances from the tool towards the device at force / feedResistance "
                          "(N·s/m).",
