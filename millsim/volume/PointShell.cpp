@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -275,10 +276,10 @@ void PointShell::compact() {
 // interpolation between the last two samples, as marching cubes places its
 // vertices.
 template <class Fine>
-glm::dvec3 PointShell::ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward) const {
+glm::dvec3 PointShell::ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward, double startValue) const {
   const glm::dvec3 vs = volume_->voxelSize();
   const glm::dvec3 step = outward * std::min({vs.x, vs.y, vs.z}) / vs;  // one (smallest) voxel, in index units
-  double v0 = trilinear(fine, at);
+  double v0 = std::isnan(startValue) ? trilinear(fine, at) : startValue;
   if (!(v0 > iso_)) return at;  // a sliver whose centroid samples outside: leave it
   // Up to s voxels along each axis (a box, not a ball: a corner voxel's point
   // walks a diagonal, √2–√3 voxels to a convex edge; s voxels along the
@@ -306,7 +307,11 @@ int PointShell::makePoints(const Fine& fine, float v, const float n[6], int I, i
   if (!surface) return 0;
   const glm::dvec3 centre = materialCentre(fine, I, J, K);
   auto place = [&](const glm::dvec3& normal) {
-    return ShellPoint{glm::vec3(volume_->indexToLocal(ontoSurface(fine, centre, normal))), glm::vec3(normal)};
+    // At scale 1 the walk starts at the voxel's centre, where the field is
+    // the voxel's own value (one trilinear sample less a point: 3 % of #3's
+    // milling frames).
+    const double start = scale_ == 1 ? double(v) : std::numeric_limits<double>::quiet_NaN();
+    return ShellPoint{glm::vec3(volume_->indexToLocal(ontoSurface(fine, centre, normal, start))), glm::vec3(normal)};
   };
   // A sheet one voxel thin across an axis has a surface on each side, and one
   // point can face only one way. Its normal would come from which outside

@@ -197,7 +197,10 @@ private:
   template <class Fine> glm::dvec3 materialCentre(const Fine& fine, int I, int J, int K) const;
   // From `at` (fine index units, inside) out along `outward` to the iso-surface
   // of the trilinear fine field, at most s fine voxels away along each axis.
-  template <class Fine> glm::dvec3 ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward) const;
+  // `startValue`: the field at `at` when the caller knows it (a voxel centre
+  // at scale 1 is the voxel's own value), else NaN.
+  template <class Fine>
+  glm::dvec3 ontoSurface(const Fine& fine, glm::dvec3 at, const glm::dvec3& outward, double startValue) const;
   // Recomputes bucket b's points from the voxels into merged_; returns how many.
   template <class Accessor> std::size_t computeBucket(const Accessor& acc, int b);
   // Makes merged_[0, n) bucket b's points: in its range if they fit, else in
