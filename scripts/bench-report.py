@@ -242,7 +242,8 @@ w("Each renderer's stiffness field (the proxy spring of #1, the penalty spring o
   "on the closed 1 kHz loop with the simulated hand, under the thresholds of [stability.md](stability.md). The sweep "
   "stops at the first failure. *Felt*: the stiffness the device actually meets on a flat surface (the force "
   "difference between two quasi-static depths over their distance), which makes the methods comparable: #2 shares its "
-  "spring among the touching points, #3 puts the coupling in series with the contact. "
+  "spring among the touching points; #3's coupling sits in series with the contact, and its default (rigidContact) "
+  "adds back what the penetration takes, so it feels the coupling's own stiffness. "
   "Colgate & Brown's "
   "bound for a sampled spring, K < 2b/T with b the physical damping, is 2·(B + 1 N·s/m device)/1 ms: 6 kN/m for the "
   "loose grip, 15 kN/m for the measured arm, 22 kN/m for the firm grip.\n")
