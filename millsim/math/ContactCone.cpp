@@ -37,6 +37,33 @@ int bits(unsigned mask) {
   return n;
 }
 
+// The subsets of at most three contacts, smallest first, each with the
+// non-negative λ that solve G λ = rhs on it and their combination Σ λ_j n_j;
+// the first that `optimal(mask, λ, combination)` accepts is written to
+// `lambda` (zero outside it). False if none is.
+template <class Optimal>
+bool firstOptimalSubset(const glm::dvec3* normals, const double* rhs, int count, double* lambda, Optimal optimal) {
+  for (int size = 1; size <= std::min(3, count); ++size) {
+    for (unsigned mask = 1; mask < (1u << count); ++mask) {
+      if (bits(mask) != size) continue;
+      double l[kMaxConeContacts] = {};
+      if (!solveOnSubset(normals, rhs, count, mask, l)) continue;
+      bool ok = true;
+      glm::dvec3 combination(0.0);
+      for (int j = 0; j < count && ok; ++j) {
+        if (!(mask & (1u << j))) continue;
+        ok = l[j] >= 0.0;  // a contact may only push
+        combination += l[j] * normals[j];
+      }
+      if (ok && optimal(mask, combination)) {
+        for (int j = 0; j < count; ++j) lambda[j] = l[j];
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 bool nearestTranslationOut(const glm::dvec3* normals, const double* depths, int count, glm::dvec3& s) {
@@ -52,27 +79,18 @@ bool nearestTranslationOut(const glm::dvec3* normals, const double* depths, int 
     s = glm::dvec3(0.0);
     return true;
   }
+  // Optimal when the translation clears every contact, the inactive ones too.
   const double tolerance = 1e-9 * scale;
-  for (int size = 1; size <= std::min(3, count); ++size) {
-    for (unsigned mask = 1; mask < (1u << count); ++mask) {
-      if (bits(mask) != size) continue;
-      double lambda[kMaxConeContacts] = {};
-      if (!solveOnSubset(normals, depths, count, mask, lambda)) continue;
-      bool ok = true;
-      glm::dvec3 t(0.0);
-      for (int j = 0; j < count && ok; ++j) {
-        if (!(mask & (1u << j))) continue;
-        ok = lambda[j] >= 0.0;  // a contact may only push
-        t += lambda[j] * normals[j];
-      }
-      for (int j = 0; j < count && ok; ++j) ok = glm::dot(normals[j], t) >= depths[j] - tolerance;
-      if (ok) {
-        s = t;
-        return true;
-      }
-    }
-  }
-  return false;
+  double lambda[kMaxConeContacts];
+  glm::dvec3 found(0.0);
+  const bool ok = firstOptimalSubset(normals, depths, count, lambda, [&](unsigned, const glm::dvec3& t) {
+    for (int j = 0; j < count; ++j)
+      if (!(glm::dot(normals[j], t) >= depths[j] - tolerance)) return false;
+    found = t;
+    return true;
+  });
+  if (ok) s = found;
+  return ok;
 }
 
 void splitAlongNormals(const glm::dvec3* normals, int count, const glm::dvec3& force, double* shares) {
@@ -87,27 +105,15 @@ void splitAlongNormals(const glm::dvec3* normals, int count, const glm::dvec3& f
     pullsAll &= along[j] <= tolerance;
   }
   if (pullsAll) return;  // no contact can carry any of it
-  for (int size = 1; size <= std::min(3, count); ++size) {
-    for (unsigned mask = 1; mask < (1u << count); ++mask) {
-      if (bits(mask) != size) continue;
-      double lambda[kMaxConeContacts] = {};
-      if (!solveOnSubset(normals, along, count, mask, lambda)) continue;
-      bool ok = true;
-      glm::dvec3 carried(0.0);
-      for (int j = 0; j < count && ok; ++j) {
-        if (!(mask & (1u << j))) continue;
-        ok = lambda[j] >= 0.0;
-        carried += lambda[j] * normals[j];
-      }
-      // Optimal when no other contact could take more of what is left.
-      const glm::dvec3 left = force - carried;
-      for (int j = 0; j < count && ok; ++j) ok = (mask & (1u << j)) || glm::dot(normals[j], left) <= tolerance;
-      if (ok) {
-        for (int j = 0; j < count; ++j) shares[j] = (mask & (1u << j)) ? lambda[j] : 0.0;
-        return;
-      }
-    }
-  }
+  // Optimal when no contact outside the subset could take more of what is left.
+  double lambda[kMaxConeContacts];
+  if (firstOptimalSubset(normals, along, count, lambda, [&](unsigned mask, const glm::dvec3& carried) {
+        const glm::dvec3 left = force - carried;
+        for (int j = 0; j < count; ++j)
+          if (!(mask & (1u << j)) && glm::dot(normals[j], left) > tolerance) return false;
+        return true;
+      }))
+    for (int j = 0; j < count; ++j) shares[j] = lambda[j];
 }
 
 }  // namespace millsim
