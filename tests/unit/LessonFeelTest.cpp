@@ -114,10 +114,12 @@ TEST_P(EveryRendererInTheLessons, InTheDefaultLessonsLeanTheWallPushesTheShaftBa
 // as well. Largest changes measured (simulated time, 1000/990/1010 Hz, in the
 // segments' order): #1 0.038/0.040/0.040, 0.013/0.017/0.011,
 // 0.019/0.015/0.039, 0.002/0.000/0.004 N; #2 0.024/0.024/0.023,
-// 0.008/0.010/0.010, 0.027/0.026/0.025, 0.019/0.020/0.017 N; #3 0.038,
-// 0.001, 0.010, 0.010 N at every rate (0.176 N while milling before its
-// tool's step was held short in the frame it lost all its contacts:
-// docs/algorithms.md, "Tissue hardness"); means under 1.5 mN. A step of 0.05 N is 5-10 % of the lean's 0.5-0.9 N, about what a
+// 0.008/0.010/0.010, 0.027/0.026/0.025, 0.019/0.020/0.017 N; #3
+// 0.041/0.040/0.042, 0.001/0.001/0.000, 0.021/0.041/0.034,
+// 0.014/0.015/0.015 N (0.176 N while milling before its tool's step was held
+// short in the frame it lost all its contacts: docs/algorithms.md, "Tissue
+// hardness"; its wedge's lift capped at 1.5 instead of 2 depths gave 0.031 N
+// holding at 1010 Hz); means under 1.5 mN. A step of 0.05 N is 5-10 % of the lean's 0.5-0.9 N, about what a
 // hand tells apart: leaning allows that much. #1 with its burr normal taken from the surface's gradient
 // (tried, issue 14) rested and slipped a voxel in the lean, 0.155 N, and fails
 // it. #1's burr proxy, hopping between the walls of its own hole when the
