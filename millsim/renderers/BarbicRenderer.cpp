@@ -153,13 +153,14 @@ private:
   // on the far rim) the rigid tool's way out is several times the depths.
   // Capped at the deeper depth the hole's wedge was 16.6 % RMS off (twice:
   // 4.4 %); uncapped, a 40 Hz buzz of 0.19 N milling in the §8.2 pit, where
-  // the way out was 0.6 mm for depths of 0.04 and 0.08 mm (the capped
-  // lengths' largest steps a frame stay within the test's: 0.041 N leaning,
-  // 0.015 N holding). Scaled down where one contact point could not carry the
-  // coupling's force at the deeper depth (|F|/k_point): at a 1 m/s impact,
-  // millimetres deep, the whole depth rang at 79 µm p-p (the stability
-  // suite's firm grip). Its force k·Δ acts at the two contacts' centres of
-  // pressure, split between their normals.
+  // the way out was 0.6 mm for depths of 0.04 and 0.08 mm. Twice costs
+  // steadiness in the §8.2 lean: its largest step a frame is 0.018–0.050 N
+  // over 985–1015 Hz (at the depth, 0.009–0.012 N; docs/algorithms.md).
+  // Scaled down where one contact point could not carry the coupling's force
+  // at the deeper depth (|F|/k_point): at a 1 m/s impact, millimetres deep,
+  // the whole depth rang at 79 µm p-p (the stability suite's firm grip). Its
+  // force k·Δ acts at the two contacts' centres of pressure, split between
+  // their normals.
   void feelRigid(HapticOutput& out) const {
     glm::dvec3 normals[2], arms[2];
     double depths[2];
