@@ -97,9 +97,13 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
                                                probe.device.orientation},
                                           1e-3});
       for (int i = 0; i < cfg.settleFrames; ++i) {
+        const HapticOutput last = out;
         const auto t0 = std::chrono::steady_clock::now();
         out = algorithm->step(*scene->scene, HapticInput{probe.device, 1e-3});
         s.us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+        const bool still = glm::length(out.force - last.force) <= cfg.restForce &&
+                           glm::length(out.torque - last.torque) <= cfg.restTorque;
+        if (i + 1 >= cfg.minSettleFrames && still) break;
       }
       // Where the rigid tool has poses exactly as near (either face past an
       // edge's bisector), the renderer is measured against the one it took.
