@@ -26,7 +26,7 @@ namespace {
 // How far (voxels) the tool moves in the step that loses all its contacts (below).
 constexpr double kLostContactStepVoxels = 0.1;
 // rigidContact: the longest way out of a wedge that is felt, in depths of the deeper contact (feelRigid).
-constexpr double kWedgeLift = 2.0;
+constexpr double kWedgeLift = 6.0;
 
 struct BarbicParams {
   int scale;
@@ -148,19 +148,20 @@ private:
   // shaft's, each its deepest penetration along its points' net push: a
   // conformal contact has many points and a shaft on a rim few, so taken as
   // one the correction leaned towards the burr's (3.5° off in the bowl). The
-  // translation is the nearest out of both (ContactCone.h), no longer than
-  // twice the deeper depth: in a wedge (the burr on a hole's wall, the shaft
-  // on the far rim) the rigid tool's way out is several times the depths.
-  // Capped at the deeper depth the hole's wedge was 16.6 % RMS off (twice:
-  // 4.4 %); uncapped, a 40 Hz buzz of 0.19 N milling in the §8.2 pit, where
-  // the way out was 0.6 mm for depths of 0.04 and 0.08 mm. Twice costs
-  // steadiness in the §8.2 lean: its largest step a frame is 0.018–0.050 N
-  // over 985–1015 Hz (at the depth, 0.009–0.012 N; docs/algorithms.md).
+  // translation is the nearest out of both (ContactCone.h): in a wedge (the
+  // burr on a hole's wall, the shaft on the far rim) the rigid tool's way out
+  // is several times the depths. Capped at the deeper depth, the hole's wedge
+  // was 16.6 % RMS off; at 3 depths and more, 3.45 %. The cap is six depths:
+  // one that binds in the §8.2 pit makes the force follow the deepest point,
+  // which jumps as the tool slides over the shell (at 2 depths 0.050 N a frame
+  // leaning, at 3 0.032 N holding, over 985–1015 Hz; at 4 to 8, 0.018 N at
+  // most), and uncapped, a near-jam there asked for a 9 N step.
   // Scaled down where one contact point could not carry the coupling's force
   // at the deeper depth (|F|/k_point): at a 1 m/s impact, millimetres deep,
-  // the whole depth rang at 79 µm p-p (the stability suite's firm grip). Its
-  // force k·Δ acts at the two contacts' centres of pressure, split between
-  // their normals.
+  // the whole depth rang at 79 µm p-p (the stability suite's firm grip), and
+  // with the part beyond the depth left unscaled the milled pit buzzed at
+  // 0.19 N and 40 Hz. Its force k·Δ acts at the two contacts' centres of
+  // pressure, split between their normals.
   void feelRigid(HapticOutput& out) const {
     glm::dvec3 normals[2], arms[2];
     double depths[2];

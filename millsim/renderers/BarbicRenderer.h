@@ -60,8 +60,8 @@ public:
                  "(the paper's timings imply this; for comparison only)."};
   SFBool rigidContact{this, "rigidContact", Access::InitializeOnly, true,
                       "Feel the contact as rigid: the coupling's wrench plus couplingStiffness x the translation "
-                      "that takes the tool out of its burr's and its shaft's penalty penetrations (at most twice "
-                      "the deeper one), what a tool held at the surface would give. FALSE: the paper's coupling "
+                      "that takes the tool out of its burr's and its shaft's penalty penetrations (at most six "
+                      "times the deeper one), what a tool held at the surface would give. FALSE: the paper's coupling "
                       "wrench, short by that penetration (12 % RMS force error at 0.1 mm voxels)."};
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances from the tool towards the device at force / feedResistance "
