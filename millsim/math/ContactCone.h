@@ -1,29 +1,22 @@
 #pragma once
-// Exact answers for a rigid body held by a few planar contacts (each a unit
-// normal n_j out of the material): the nearest translation out of all of them,
-// and a force split into non-negative pushes along them. Both are small
-// convex problems whose solution lies on some subset of at most three
-// contacts (three independent normals span space); with no more than
-// kMaxConeContacts contacts every subset is tried, in order of size, and the
-// first that meets the optimality (KKT) conditions is the answer: exact to
-// rounding, a fixed bound on work, no iteration count to tune, no allocation.
-// Used by #3's rigidContact (BarbicRenderer), whose burr and shaft contacts
-// a rigid tool would be translated out of together.
-#include <glm/vec3.hpp>
+// The least-cost way a rigid body held by springs leaves a few contacts: a
+// small convex problem (a linear complementarity problem of at most two
+// contacts) solved exactly by trying each set of active contacts, no
+// iteration count to tune, no allocation. Used by #3's rigidContact
+// (BarbicRenderer), whose burr and shaft contacts a rigid tool held by the
+// virtual coupling would be moved out of together.
 
 namespace millsim {
 
-constexpr int kMaxConeContacts = 6;
-
-// The shortest translation s with n_j·s ≥ d_j for every j < count (d_j > 0:
-// contact j is d_j deep; ≤ 0: it is that far clear and must stay clear).
-// False when none exists: contacts that face each other deeper than they are
-// apart (a jam, as a peg wedged across a hole); s is then left untouched.
-bool nearestTranslationOut(const glm::dvec3* normals, const double* depths, int count, glm::dvec3& s);
-
-// Non-negative shares λ_j (written to `shares`) with Σ λ_j n_j nearest to
-// `force` (least squares): how a force that holds a body against its contacts
-// is carried by each of them. A contact the force pulls away from gets 0.
-void splitAlongNormals(const glm::dvec3* normals, int count, const glm::dvec3& force, double* shares);
+// The least-cost way out of at most two contacts for a body that may also
+// turn: pushes λ_j ≥ 0 along the contacts' generalised normals g_j (a
+// normal and its moment about the body's origin) that clear both, A·λ ≥ d,
+// and push only where a contact stays touching (λ_j (A·λ − d)_j = 0), with
+// A_ij = g_i·W·g_j the Gram matrix in the body's inverse metric W (for a
+// body held by springs k and kr: n_i·n_j/k + (a_i×n_i)·(a_j×n_j)/kr).
+// The body moves W·Σ λ_j g_j, and the springs then push with Σ λ_j g_j.
+// False when no pushes clear both (contacts that face each other across a
+// jam); `lambda` is then left untouched.
+bool pushesOut(const double (&gram)[2][2], const double* depths, int count, double* lambda);
 
 }  // namespace millsim

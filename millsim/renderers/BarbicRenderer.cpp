@@ -148,20 +148,22 @@ private:
   // shaft's, each its deepest penetration along its points' net push: a
   // conformal contact has many points and a shaft on a rim few, so taken as
   // one the correction leaned towards the burr's (3.5° off in the bowl). The
-  // translation is the nearest out of both (ContactCone.h): in a wedge (the
-  // burr on a hole's wall, the shaft on the far rim) the rigid tool's way out
-  // is several times the depths. Capped at the deeper depth, the hole's wedge
-  // was 16.6 % RMS off; at 3 depths and more, 3.45 %. The cap is six depths:
-  // one that binds in the §8.2 pit makes the force follow the deepest point,
-  // which jumps as the tool slides over the shell (at 2 depths 0.050 N a frame
-  // leaning, at 3 0.032 N holding, over 985–1015 Hz; at 4 to 8, 0.018 N at
-  // most), and uncapped, a near-jam there asked for a 9 N step.
-  // Scaled down where one contact point could not carry the coupling's force
-  // at the deeper depth (|F|/k_point): at a 1 m/s impact, millimetres deep,
-  // the whole depth rang at 79 µm p-p (the stability suite's firm grip), and
-  // with the part beyond the depth left unscaled the milled pit buzzed at
-  // 0.19 N and 40 Hz. Its force k·Δ acts at the two contacts' centres of
-  // pressure, split between their normals.
+  // rigid tool is moved out of both at least cost to the coupling's springs
+  // (k, kr: it may turn as well as lift, as the physical reference's tool
+  // does; ContactCone.h's pushesOut), and the springs' extra wrench is felt.
+  // In a wedge (the burr on a hole's wall, the shaft on the far rim) the way
+  // out is several times the depths. Translated out, capped at the deeper
+  // depth, the hole's wedge was 16.6 % RMS off; at 3 depths and more, 3.45 %;
+  // moved out in the springs' metric, 1.2 % (its torque 0.14 → 0.10). The
+  // springs' stretch is capped at six depths: a cap that binds in the §8.2 pit
+  // makes the force follow the deepest point, which jumps as the tool slides
+  // over the shell (at 2 depths 0.050 N a frame leaning, at 3 0.032 N holding,
+  // over 985–1015 Hz; at 4 to 8, 0.018 N at most), and uncapped, a near-jam
+  // there asked for a 9 N step. Scaled down where one contact point could not
+  // carry the coupling's force at the deeper depth (|F|/k_point): at a 1 m/s
+  // impact, millimetres deep, the whole depth rang at 79 µm p-p (the
+  // stability suite's firm grip), and with the part beyond the depth left
+  // unscaled the milled pit buzzed at 0.19 N and 40 Hz.
   void feelRigid(HapticOutput& out) const {
     glm::dvec3 normals[2], arms[2];
     double depths[2];
@@ -173,19 +175,26 @@ private:
     }
     if (n == 0) return;
     const int deeper = n == 2 && depths[1] > depths[0] ? 1 : 0;
-    glm::dvec3 away(0.0);
-    if (!nearestTranslationOut(normals, depths, n, away))  // the two face each other: out of the deeper
-      away = depths[deeper] * normals[deeper];
-    const double length = glm::length(away);
+    const double k = p_.coupling.k, kr = p_.coupling.kr;
+    glm::dvec3 moments[2];
+    double gram[2][2] = {{1.0 / k, 0.0}, {0.0, 1.0 / k}};
+    for (int i = 0; i < n; ++i) moments[i] = glm::cross(arms[i], normals[i]);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) gram[i][j] = glm::dot(normals[i], normals[j]) / k + glm::dot(moments[i], moments[j]) / kr;
+    double pushes[2] = {0.0, 0.0};
+    if (!pushesOut(gram, depths, n, pushes)) {  // a jam: out of the deeper alone, by translation
+      pushes[1 - deeper] = 0.0;
+      pushes[deeper] = k * depths[deeper];
+    }
+    glm::dvec3 force(0.0), torque(0.0);
+    for (int i = 0; i < n; ++i) force += pushes[i] * normals[i], torque += pushes[i] * moments[i];
+    const double length = glm::length(force) / k;  // how far the springs are stretched further
     const double carried = std::min(1.0, glm::length(out.force) / (pointK_ * depths[deeper]));
     const double longest = carried * std::min(length, kWedgeLift * depths[deeper]);
     if (!(longest > 0.0) || !std::isfinite(longest)) return;
-    if (length > longest) away *= longest / length;
-    const glm::dvec3 add = p_.coupling.k * away;
-    double shares[2] = {0.0, 0.0};
-    splitAlongNormals(normals, n, add, shares);
-    out.force += add;
-    for (int i = 0; i < n; ++i) out.torque += glm::cross(arms[i], shares[i] * normals[i]);
+    const double scale = std::min(1.0, longest / length);
+    out.force += scale * force;
+    out.torque += scale * torque;
   }
 
   struct Shells {

@@ -59,10 +59,11 @@ public:
                  "Cull the point shell with box tests against the tool's oriented box; false tests every point "
                  "(the paper's timings imply this; for comparison only)."};
   SFBool rigidContact{this, "rigidContact", Access::InitializeOnly, true,
-                      "Feel the contact as rigid: the coupling's wrench plus couplingStiffness x the translation "
-                      "that takes the tool out of its burr's and its shaft's penalty penetrations (at most six "
-                      "times the deeper one), what a tool held at the surface would give. FALSE: the paper's coupling "
-                      "wrench, short by that penetration (12 % RMS force error at 0.1 mm voxels)."};
+                      "Feel the contact as rigid: the coupling's wrench plus what its springs would add if the tool "
+                      "were moved (translated and turned, at least cost to them) out of its burr's and its shaft's "
+                      "penalty penetrations (stretching them at most six times the deeper one), what a tool held at "
+                      "the surface would give. FALSE: the paper's coupling wrench, short by that penetration (12 % "
+                      "RMS force error at 0.1 mm voxels)."};
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances from the tool towards the device at force / feedResistance "
                          "(N·s/m).",

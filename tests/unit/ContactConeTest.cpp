@@ -1,100 +1,70 @@
-// The nearest translation out of a few planar contacts, and a force's split
-// into non-negative pushes along them (millsim/math/ContactCone.h), on cases
-// worked out by hand.
+// The least-cost way out of at most two contacts for a body held by springs
+// (millsim/math/ContactCone.h), on cases worked out by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
-
-#include <glm/geometric.hpp>
 
 #include "millsim/math/ContactCone.h"
 
 using namespace millsim;
 
-namespace {
-
-void expectNear(const glm::dvec3& a, const glm::dvec3& b) {
-  EXPECT_NEAR(a.x, b.x, 1e-12);
-  EXPECT_NEAR(a.y, b.y, 1e-12);
-  EXPECT_NEAR(a.z, b.z, 1e-12);
+// pushesOut: a body held by springs k (and kr for turning) moved out of at
+// most two contacts at least cost. Gram entries in m/N (m and rad per N).
+TEST(ContactCone, OnePushIsTheSpringTimesTheDepth) {
+  const double k = 2000.0;
+  const double gram[2][2] = {{1.0 / k, 0.0}, {0.0, 0.0}};
+  const double d[] = {1e-4};
+  double l[2] = {-1.0, -1.0};
+  ASSERT_TRUE(pushesOut(gram, d, 1, l));
+  EXPECT_NEAR(l[0], k * 1e-4, 1e-12);
 }
 
-}  // namespace
-
-TEST(ContactCone, OutOfOnePlaneAlongItsNormal) {
-  const glm::dvec3 n[] = {{0, 1, 0}};
-  const double d[] = {0.1};
-  glm::dvec3 s(9.0);
-  ASSERT_TRUE(nearestTranslationOut(n, d, 1, s));
-  expectNear(s, {0, 0.1, 0});
+TEST(ContactCone, ACornerIsPushedOutOfBothFaces) {
+  const double k = 2000.0;
+  const double gram[2][2] = {{1.0 / k, 0.0}, {0.0, 1.0 / k}};  // normals at right angles, no moments
+  const double d[] = {1e-4, 2e-4};
+  double l[2];
+  ASSERT_TRUE(pushesOut(gram, d, 2, l));
+  EXPECT_NEAR(l[0], 0.2, 1e-12);
+  EXPECT_NEAR(l[1], 0.4, 1e-12);
 }
 
-TEST(ContactCone, OutOfACornerByBothDepths) {
-  const glm::dvec3 n[] = {{1, 0, 0}, {0, 1, 0}};
-  const double d[] = {0.1, 0.2};
-  glm::dvec3 s;
-  ASSERT_TRUE(nearestTranslationOut(n, d, 2, s));
-  expectNear(s, {0.1, 0.2, 0});
+// Normals 60° apart: out of the deeper (0.2 mm along its normal) is already
+// 0.1 mm along the other's, out of its 0.05 mm: the shallower does not push.
+TEST(ContactCone, TheDeeperAloneClearsAShallowerOneNearby) {
+  const double k = 2000.0, c = 0.5;  // cos 60°
+  const double gram[2][2] = {{1.0 / k, c / k}, {c / k, 1.0 / k}};
+  const double d[] = {0.05e-3, 0.2e-3};
+  double l[2];
+  ASSERT_TRUE(pushesOut(gram, d, 2, l));
+  EXPECT_NEAR(l[0], 0.0, 1e-12);
+  EXPECT_NEAR(l[1], k * 0.2e-3, 1e-12);
 }
 
-// Out of the deeper plane is already out of the shallower one at 45°.
-TEST(ContactCone, OnePushCanClearBoth) {
-  const glm::dvec3 n[] = {{0, 1, 0}, glm::normalize(glm::dvec3(1, 1, 0))};
-  const double d[] = {1.0, 0.1};
-  glm::dvec3 s;
-  ASSERT_TRUE(nearestTranslationOut(n, d, 2, s));
-  expectNear(s, {0, 1, 0});
+// A wedge, normals 150° apart: translating out costs far more than the
+// depths, and a body that may turn (a lever of 2 mm on the second contact
+// at kr = 0.1 N·m/rad) is pushed less than one that may not.
+TEST(ContactCone, TurningEasesAWedge) {
+  const double k = 2000.0, kr = 0.1, c = std::cos(150.0 * M_PI / 180.0), arm = 2e-3;
+  const double rigid[2][2] = {{1.0 / k, c / k}, {c / k, 1.0 / k}};
+  const double turning[2][2] = {{1.0 / k, c / k}, {c / k, 1.0 / k + arm * arm / kr}};
+  const double d[] = {0.05e-3, 0.05e-3};
+  double lr[2], lt[2];
+  ASSERT_TRUE(pushesOut(rigid, d, 2, lr));
+  ASSERT_TRUE(pushesOut(turning, d, 2, lt));
+  // Translation only: λ = d·k / (1 + c) each, 7.5 times k·d.
+  EXPECT_NEAR(lr[0], k * 0.05e-3 / (1.0 + c), 1e-9);
+  EXPECT_NEAR(lr[1], lr[0], 1e-9);
+  EXPECT_LT(lt[0] + lt[1], lr[0] + lr[1]);
+  EXPECT_GT(lt[0], 0.0);
+  EXPECT_GT(lt[1], 0.0);
 }
 
-// A contact that is clear must stay clear: out of the first along its normal
-// would sink 0.6 into the second, which is only 0.2 away.
-TEST(ContactCone, KeepsAClearContactClear) {
-  const glm::dvec3 n[] = {{0, 1, 0}, {0, -0.6, 0.8}};
-  const double d[] = {1.0, -0.2};
-  glm::dvec3 s;
-  ASSERT_TRUE(nearestTranslationOut(n, d, 2, s));
-  EXPECT_NEAR(glm::dot(n[0], s), 1.0, 1e-12);
-  EXPECT_NEAR(glm::dot(n[1], s), -0.2, 1e-12);
-  EXPECT_NEAR(s.x, 0.0, 1e-12);  // nothing sideways: both normals lie in the y-z plane
-}
-
-// A clear contact only bounds the way out, it never pulls: 0.5 clear below,
-// 0.1 deep above, the way out is 0.1 up (not 0.5 up, onto the clear one).
-TEST(ContactCone, AClearContactDoesNotPull) {
-  const glm::dvec3 n[] = {{0, -1, 0}, {0, 1, 0}};
-  const double d[] = {-0.5, 0.1};
-  glm::dvec3 s;
-  ASSERT_TRUE(nearestTranslationOut(n, d, 2, s));
-  expectNear(s, {0, 0.1, 0});
-}
-
-TEST(ContactCone, ContactsFacingEachOtherHaveNoWayOut) {
-  const glm::dvec3 n[] = {{1, 0, 0}, {-1, 0, 0}};
-  const double d[] = {0.1, 0.1};
-  glm::dvec3 s(7.0);
-  EXPECT_FALSE(nearestTranslationOut(n, d, 2, s));
-  expectNear(s, glm::dvec3(7.0));  // left untouched
-}
-
-TEST(ContactCone, RefusesANonFiniteDepth) {
-  const glm::dvec3 n[] = {{0, 1, 0}};
-  const double d[] = {std::numeric_limits<double>::quiet_NaN()};
-  glm::dvec3 s;
-  EXPECT_FALSE(nearestTranslationOut(n, d, 1, s));
-}
-
-TEST(ContactCone, SplitsAForceIntoPushes) {
-  const glm::dvec3 n[] = {{1, 0, 0}, {0, 1, 0}};
-  double shares[2];
-  splitAlongNormals(n, 2, {2, 3, 0}, shares);
-  EXPECT_NEAR(shares[0], 2.0, 1e-12);
-  EXPECT_NEAR(shares[1], 3.0, 1e-12);
-  // A contact the force pulls away from carries nothing.
-  splitAlongNormals(n, 2, {2, -3, 0}, shares);
-  EXPECT_NEAR(shares[0], 2.0, 1e-12);
-  EXPECT_EQ(shares[1], 0.0);
-  splitAlongNormals(n, 2, {-2, -3, 0}, shares);
-  EXPECT_EQ(shares[0], 0.0);
-  EXPECT_EQ(shares[1], 0.0);
+TEST(ContactCone, NoPushesClearAJam) {
+  const double k = 2000.0;
+  const double gram[2][2] = {{1.0 / k, -1.0 / k}, {-1.0 / k, 1.0 / k}};  // facing each other
+  const double d[] = {0.1e-3, 0.1e-3};
+  double l[2] = {7.0, 7.0};
+  EXPECT_FALSE(pushesOut(gram, d, 2, l));
+  EXPECT_EQ(l[0], 7.0);
 }

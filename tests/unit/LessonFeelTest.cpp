@@ -133,8 +133,8 @@ double vibration(const std::vector<glm::dvec3>& force) {
 // segments' order): #1 0.038/0.040/0.040, 0.013/0.017/0.011,
 // 0.019/0.015/0.039, 0.002/0.000/0.004 N; #2 0.024/0.024/0.023,
 // 0.008/0.010/0.010, 0.027/0.026/0.025, 0.019/0.020/0.017 N; #3
-// 0.041/0.040/0.042, 0.011/0.009/0.010, 0.012/0.014/0.011,
-// 0.006/0.007/0.006 N (0.176 N while milling before its tool's step was held
+// 0.041/0.040/0.042, 0.001/0.001/0.009, 0.017/0.015/0.014,
+// 0.018/0.016/0.016 N (0.176 N while milling before its tool's step was held
 // short in the frame it lost all its contacts: docs/algorithms.md, "Tissue
 // hardness"; its wedge's lift capped at 2 instead of 6 depths gave 0.041 N
 // leaning at 990 Hz, at 3 depths 0.032 N holding at another rate); means

@@ -363,8 +363,8 @@ TEST_P(EveryRenderer, PushesWithinThreeDegreesOnFlatConvexAndConcaveSurfaces) {
 // wall and the bottom: at 30° the shaft meets the far rim too, a wedge, and a
 // rigid tool held at the device's orientation is lifted by several times the
 // depths (the physical reference). Issue 14's force goal (5 % RMS) on it.
-// #3 lifts the rigid tool by up to six times the deeper depth (rigidContact):
-// 3.45 %; capped at the depth, 16.6 %. #1's and #2's defaults miss it (named
+// #3 moves the rigid tool out in its coupling's metric, lifting and turning
+// it (rigidContact): 1.2 %; translated out and capped at the depth, 16.6 %. #1's and #2's defaults miss it (named
 // waivers): each caps its contacts' shares at their own depths, as the
 // whole tool's lift jammed and jumped in the default lesson's milled pit
 // (docs/algorithms.md). #1's holdWholeTool meets it (LineProxy test below).
