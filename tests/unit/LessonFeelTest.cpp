@@ -160,7 +160,7 @@ TEST_P(EveryRendererInTheLessons, TheSection82ProcedureIsFeltWithoutShaking) {
     double from, to, meanLimit, maxLimit;  // s, N
     double sum = 0.0, max = 0.0;
     int count = 0;
-    std::vector<glm::dvec3> force;
+    std::vector<glm::dvec3> force{};
   };
   for (const double rate : {1000.0, 990.0, 1010.0}) {  // Hz; desiredHapticsRate defaults to 1000
     Segment segments[] = {{"milling", 2.5, 13.0, 3e-3, 0.1},
