@@ -12,7 +12,7 @@
 
 #include "millsim/haptics/CutFront.h"
 #include "millsim/haptics/HapticScene.h"
-#include "millsim/math/ContactCone.h"
+#include "millsim/math/LeastCostExit.h"
 #include "millsim/renderers/BarbicSolve.h"
 #include "millsim/renderers/FreeStart.h"
 #include "millsim/renderers/Obb.h"
@@ -150,7 +150,7 @@ private:
   // one the correction leaned towards the burr's (3.5° off in the bowl). The
   // rigid tool is moved out of both at least cost to the coupling's springs
   // (k, kr: it may turn as well as lift, as the physical reference's tool
-  // does; ContactCone.h's pushesOut), and the springs' extra wrench is felt.
+  // does; LeastCostExit.h), and the springs' extra wrench is felt.
   // In a wedge (the burr on a hole's wall, the shaft on the far rim) the way
   // out is several times the depths. Translated out, capped at the deeper
   // depth, the hole's wedge was 16.6 % RMS off; at 3 depths and more, 3.45 %;
@@ -177,7 +177,7 @@ private:
     const int deeper = n == 2 && depths[1] > depths[0] ? 1 : 0;
     const double k = p_.coupling.k, kr = p_.coupling.kr;
     glm::dvec3 moments[2];
-    double gram[2][2] = {{1.0 / k, 0.0}, {0.0, 1.0 / k}};
+    double gram[2][2] = {};
     for (int i = 0; i < n; ++i) moments[i] = glm::cross(arms[i], normals[i]);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) gram[i][j] = glm::dot(normals[i], normals[j]) / k + glm::dot(moments[i], moments[j]) / kr;

@@ -1,4 +1,4 @@
-#include "millsim/math/ContactCone.h"
+#include "millsim/math/LeastCostExit.h"
 
 #include <algorithm>
 #include <cmath>
