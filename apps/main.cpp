@@ -1,42 +1,37 @@
 // millsim: load, check and run MillSim scenes.
-#include <exception>
-#include <iostream>
-#include <new>
+//
+// The command links only libmillsim_scene (the node graph, no OpenVDB).
+// `millsim --version` and `millsim nodes` run here; every other command line
+// goes to libmillsim_cli, opened next to libmillsim_scene, which holds all the
+// verbs and links libmillsim and OpenVDB (27 MB resident on Debian, paid by
+// no verb that loads no voxels).
+#include <cstring>
 
-#include "Commands.h"
-#include "MillSimVersion.h"
+#include "CliApp.h"
+#include "CliModule.h"
+#include "millsim/core/SiblingLibrary.h"
 
 int main(int argc, char** argv) {
   using namespace millsim::app;
-  CLI::App app{"MillSim: 6-DOF haptic milling on X3D scenes.", "millsim"};
-  app.set_version_flag("--version", std::string("millsim ") + MILLSIM_VERSION);
-  app.require_subcommand(1);
-  GlobalOptions global;
-  app.add_flag("--allow-plugin-path", global.allowPluginPath,
-               "Let ImportLibrary load libraries by absolute path or with '..' in the path");
-
-  int result = kExitOk;
-  addBenchCommand(app, result);
-  addCheckCommand(app, global, result);
-  addNodesCommand(app, result);
-  addPhantomCommand(app, result);
-  addReplayCommand(app, global, result);
-  addRenderCommand(app, global, result);
-  addReportCommand(app, result);
-  addRunCommand(app, global, result);
-
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help, version or the usage error
-    return code == 0 ? kExitOk : kExitBadInput;
-  } catch (const std::bad_alloc&) {
-    // The verbs report their own errors; what still escapes must not abort the process.
-    std::cerr << "millsim: error: out of memory\n";
-    return kExitFailure;
-  } catch (const std::exception& e) {
-    std::cerr << "millsim: error: " << e.what() << "\n";
+  const bool versionOnly = argc == 2 && std::strcmp(argv[1], "--version") == 0;
+  if (versionOnly || (argc >= 2 && std::strcmp(argv[1], "nodes") == 0)) {
+    CLI::App app;
+    describeApp(app);
+    int result = kExitOk;
+    addNodesCommand(app, result);
+    return parseAndRun(app, argc, argv, result);
+  }
+  std::string error;
+  const auto* cli = static_cast<const CliModule*>(millsim::openSiblingLibrary(
+      "libmillsim_cli.so", "MILLSIM_CLI_LIBRARY", "millsim_cli_module", "command",
+      "it is built and installed with the millsim command", error));
+  if (cli && cli->abiVersion != kCliAbiVersion) {
+    error = "the command library is not of MillSim command ABI version " + std::to_string(kCliAbiVersion);
+    cli = nullptr;
+  }
+  if (!cli) {
+    std::cerr << "millsim: error: " << error << "\n";
     return kExitFailure;
   }
-  return result;
+  return cli->main(argc, argv);
 }

@@ -3,13 +3,17 @@
 #   target_link_libraries(myapp PRIVATE MillSim::millsim)
 include(CMakePackageConfigHelpers)
 
-# libmillsim_medical (VTK, GDCM) is exported too: integrators that mesh volumes
-# link MillSim::medical (IsoSurface.h); libmillsim opens it next to itself.
-install(TARGETS millsim millsim_medical EXPORT MillSimTargets
+# MillSim::millsim brings MillSim::scene (libmillsim_scene: the node graph, no
+# OpenVDB), which a plugin of nodes alone may link instead. libmillsim_medical
+# (VTK, GDCM) is exported too: integrators that mesh volumes link
+# MillSim::medical (IsoSurface.h); libmillsim opens it next to itself.
+install(TARGETS millsim_scene millsim millsim_medical EXPORT MillSimTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS millsim-app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The command's verbs, next to libmillsim_scene where the command opens them (apps/CliModule.h).
+install(TARGETS millsim_cli LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # libmillsim_graphics sits next to libmillsim, where loadGraphicsModule() looks for it.
 install(TARGETS millsim_graphics LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS millsim_audio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -1,20 +1,18 @@
 #pragma once
 // VolumeObject: a CT voxel volume in the scene — the object that is felt, milled
 // and drawn. Placed like X3D's VolumeData: centred on its local origin, under
-// any Transforms. The voxels live in a VoxelVolume (OpenVDB); the point shell
-// for Algorithm #3 is built only when a renderer asks for it.
-#include <filesystem>
-#include <map>
+// any Transforms. The voxels live in a VoxelVolume (OpenVDB), held with their
+// tissues and point shells by a VolumeContents that libmillsim makes
+// (VolumeModule.h: this node's library does not link OpenVDB); the point
+// shell for Algorithm #3 is built only when a renderer asks for it.
 #include <memory>
+#include <string>
 
 #include "millsim/core/NodeKinds.h"
 #include "millsim/volume/Tissue.h"
+#include "millsim/volume/VolumeContents.h"
 
 namespace millsim {
-
-class VoxelVolume;
-class PointShell;
-class TissueMap;
 
 class VolumeObject : public ChildNode {
 public:
@@ -47,25 +45,23 @@ public:
   void initialize(DiagnosticSink& sink) override;
 
   // Null until initialize() loaded a volume.
-  VoxelVolume* volume() { return volume_.get(); }
-  const VoxelVolume* volume() const { return volume_.get(); }
-  const std::string& format() const { return format_; }
+  VoxelVolume* volume() { return contents_ ? &contents_->voxels() : nullptr; }
+  const VoxelVolume* volume() const { return contents_ ? &contents_->voxels() : nullptr; }
+  const std::string& format() const { return contents_ ? contents_->format() : kNoFormat; }
   // The volume's extent in its local frame (m): dimensions x voxel size; zero until loaded.
-  glm::dvec3 size() const;
+  glm::dvec3 size() const { return contents_ ? contents_->size() : glm::dvec3(0.0); }
   // The smallest voxel edge (m); zero until loaded.
-  double voxelEdge() const;
-  // The point shell at an integer scale, built on first request.
+  double voxelEdge() const { return contents_ ? contents_->voxelEdge() : 0.0; }
+  // The point shell at an integer scale, built on first request. Throws
+  // VolumeError when no volume is loaded.
   PointShell& pointShell(int scale);
   // The voxels' tissues; null when the volume has no Tissue nodes.
-  const TissueMap* tissueMap() const { return tissueMap_.get(); }
-  bool hasPointShell(int scale) const { return shells_.count(scale) != 0; }
+  const TissueMap* tissueMap() const { return contents_ ? contents_->tissueMap() : nullptr; }
+  bool hasPointShell(int scale) const { return contents_ && contents_->hasPointShell(scale); }
 
 private:
-  std::unique_ptr<VoxelVolume> volume_;
-  std::string format_;
-  std::map<int, std::unique_ptr<PointShell>> shells_;
-  std::unique_ptr<TissueMap> tissueMap_;
-  void classifyTissues(const std::filesystem::path& base, DiagnosticSink& sink);
+  static const std::string kNoFormat;
+  std::unique_ptr<VolumeContents> contents_;
 };
 
 }  // namespace millsim

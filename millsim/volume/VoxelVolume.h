@@ -9,18 +9,14 @@
 // is kept in leaf nodes, never in constant tiles, so that milling only changes
 // values and never allocates.
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 
 #include <glm/vec3.hpp>
 #include <openvdb/openvdb.h>
 
-namespace millsim {
+#include "millsim/volume/VolumeError.h"
 
-// A volume that cannot be loaded or made: the message names the file and the problem.
-struct VolumeError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+namespace millsim {
 
 class VoxelVolume {
 public:

@@ -1,0 +1,154 @@
+// The voxel side of VolumeObject (VolumeModule.h): loading its url and label
+// volumes, the check that it holds material, its tissues and point shells.
+// In libmillsim, which links OpenVDB; the node itself is in libmillsim_scene.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <new>
+#include <vector>
+
+#include "millsim/volume/PointShell.h"
+#include "millsim/volume/Tissue.h"
+#include "millsim/volume/TissueMap.h"
+#include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VolumeContents.h"
+#include "millsim/volume/VolumeIO.h"
+#include "millsim/volume/VolumeModule.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/volume/VoxelVolume.h"
+
+namespace millsim {
+
+namespace {
+
+class VoxelContents final : public VolumeContents {
+public:
+  VoxelContents(VoxelVolume volume, std::string format, float isoValue)
+      : volume_(std::move(volume)), format_(std::move(format)), isoValue_(isoValue) {}
+  VoxelVolume& voxels() override { return volume_; }
+  const std::string& format() const override { return format_; }
+  glm::dvec3 size() const override { return glm::dvec3(volume_.dims()) * volume_.voxelSize(); }
+  double voxelEdge() const override {
+    const glm::dvec3 v = volume_.voxelSize();
+    return std::min({v.x, v.y, v.z});
+  }
+  PointShell& pointShell(int scale) override {
+    auto it = shells_.find(scale);
+    if (it != shells_.end()) return *it->second;
+    auto shell = std::make_unique<PointShell>(volume_, isoValue_, scale);
+    return *shells_.emplace(scale, std::move(shell)).first->second;
+  }
+  bool hasPointShell(int scale) const override { return shells_.count(scale) != 0; }
+  const TissueMap* tissueMap() const override { return tissueMap_.get(); }
+  void classifyTissues(const VolumeObject& node, const std::filesystem::path& base, DiagnosticSink& sink);
+
+private:
+  VoxelVolume volume_;
+  std::string format_;
+  float isoValue_;
+  std::map<int, std::unique_ptr<PointShell>> shells_;
+  std::unique_ptr<TissueMap> tissueMap_;
+};
+
+void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesystem::path& base, DiagnosticSink& sink) {
+  std::vector<const Tissue*> list;
+  for (const auto& t : node.tissues.get()) list.push_back(t.get());
+  if (list.empty()) {
+    if (!node.labelUrl.get().empty()) sink.warning(node.location(), "VolumeObject has a labelUrl but no tissues; the labels are not used");
+    return;
+  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (list[i]->name.get() == list[j]->name.get() && !list[i]->name.get().empty())
+        sink.error(list[i]->location(), "Tissue name '" + list[i]->name.get() + "' is used twice in one VolumeObject");
+  std::unique_ptr<VoxelVolume> labels;
+  std::string failures;
+  for (const std::string& u : node.labelUrl.get()) {
+    try {
+      labels = std::make_unique<VoxelVolume>(isPhantomLabelsUrl(u) ? loadPhantomLabels(u) : loadVolume(u, base, 0.f).volume);
+      break;
+    } catch (const VolumeError& e) {
+      failures += std::string("\n  ") + e.what();
+    }
+  }
+  if (!node.labelUrl.get().empty() && !labels) {
+    sink.error(node.location(), "VolumeObject could not load any of its labelUrl volumes:" + failures);
+    return;
+  }
+  try {
+    tissueMap_ = TissueMap::build(volume_, list, labels.get());
+  } catch (const VolumeError& e) {
+    sink.error(node.location(), std::string("VolumeObject tissues: ") + e.what());
+    return;
+  }
+  // A tissue no voxel is made of is almost always a wrong range or label.
+  const auto& counts = tissueMap_->voxelCounts();
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (counts[i + 1] == 0)
+      sink.warning(list[i]->location(), "Tissue '" + list[i]->name.get() + "' matches no voxel of the volume");
+}
+
+}  // namespace
+
+std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, DiagnosticSink& sink) {
+  const std::filesystem::path base = node.location().file.empty()
+                                         ? std::filesystem::path()
+                                         : std::filesystem::path(node.location().file).parent_path();
+  std::string failures;
+  std::vector<std::string> failed;
+  for (const std::string& u : node.url.get()) {
+    try {
+      LoadedVolume loaded = loadVolume(u, base, node.airValue.get());
+      const glm::dvec3 override(node.voxelSize.get());
+      auto contents = std::make_unique<VoxelContents>(
+          override != glm::dvec3(0.0)
+              ? VoxelVolume(loaded.volume.gridPtr(), loaded.volume.dims(), override, node.airValue.get())
+              : std::move(loaded.volume),
+          loaded.format, node.isoValue.get());
+      node.loadedUrl.set(u);
+      // A fallback url loaded: say why each earlier one did not.
+      for (const std::string& f : failed)
+        sink.note(node.location(), "VolumeObject url failed, a later one was used: " + f);
+      // A volume with nothing above isoValue is felt, milled and drawn as
+      // nothing: almost always the wrong isoValue, units or voxel size.
+      // Stops at the first voxel with material: a whole scan only for the volume that has none.
+      float densest = -std::numeric_limits<float>::infinity();
+      const float iso = node.isoValue.get();
+      for (auto it = contents->voxels().grid().cbeginValueOn(); it && !(densest > iso); ++it)
+        densest = std::max(densest, *it);
+      if (!(densest > iso))
+        sink.error(node.location(), "VolumeObject " + u + " holds no material: no voxel is above isoValue " +
+                                        formatNumber(iso) +
+                                        (std::isfinite(densest) ? " (the densest is " + formatNumber(densest) + ")"
+                                                                : std::string(" (every voxel is air)")) +
+                                        "; check isoValue, the data's units or the voxel size");
+      contents->classifyTissues(node, base, sink);
+      return contents;
+    } catch (const VolumeError& e) {
+      failed.emplace_back(e.what());
+      failures += "\n  " + failed.back();
+    } catch (const std::bad_alloc&) {
+      // A header that declares more voxels than memory holds: an error for this url, not a crash.
+      failed.push_back(u + ": out of memory while reading the volume (its header declares more data than fits)");
+      failures += "\n  " + failed.back();
+    }
+  }
+  sink.error(node.location(), "VolumeObject could not load any of its urls:" + failures);
+  return nullptr;
+}
+
+namespace {
+
+const VolumeModule kModule{kVolumeAbiVersion, &loadVolumeContents};
+
+}  // namespace
+
+}  // namespace millsim
+
+// Typed as the loader calls it (SiblingLibrary: const void* (*)()): a call through
+// another function type is undefined behaviour (clang's -fsanitize=function).
+extern "C" __attribute__((visibility("default"))) const void* millsim_volume_module() {
+  return &millsim::kModule;
+}
