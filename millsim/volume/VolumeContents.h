@@ -18,6 +18,7 @@ class VolumeContents {
 public:
   virtual ~VolumeContents() = default;
   virtual VoxelVolume& voxels() = 0;
+  virtual const VoxelVolume& voxels() const = 0;
   // The format the url was read as ("vdb", "nrrd", "phantom", ...).
   virtual const std::string& format() const = 0;
   // The volume's extent in its local frame (m): dimensions × voxel size.

@@ -28,6 +28,7 @@ public:
   VoxelContents(VoxelVolume volume, std::string format, float isoValue)
       : volume_(std::move(volume)), format_(std::move(format)), isoValue_(isoValue) {}
   VoxelVolume& voxels() override { return volume_; }
+  const VoxelVolume& voxels() const override { return volume_; }
   const std::string& format() const override { return format_; }
   glm::dvec3 size() const override { return glm::dvec3(volume_.dims()) * volume_.voxelSize(); }
   double voxelEdge() const override {

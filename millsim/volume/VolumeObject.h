@@ -7,6 +7,7 @@
 // shell for Algorithm #3 is built only when a renderer asks for it.
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "millsim/core/NodeKinds.h"
 #include "millsim/volume/Tissue.h"
@@ -46,7 +47,7 @@ public:
 
   // Null until initialize() loaded a volume.
   VoxelVolume* volume() { return contents_ ? &contents_->voxels() : nullptr; }
-  const VoxelVolume* volume() const { return contents_ ? &contents_->voxels() : nullptr; }
+  const VoxelVolume* volume() const { return contents_ ? &std::as_const(*contents_).voxels() : nullptr; }
   const std::string& format() const { return contents_ ? contents_->format() : kNoFormat; }
   // The volume's extent in its local frame (m): dimensions x voxel size; zero until loaded.
   glm::dvec3 size() const { return contents_ ? contents_->size() : glm::dvec3(0.0); }
