@@ -23,11 +23,17 @@ std::filesystem::path ownFolder() {
 const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, const char* what,
                                const char* hint, std::string& error) {
   std::filesystem::path library;
-  if (const char* env = std::getenv(overrideVar); env && *env)
+  void* handle = nullptr;
+  if (const char* env = std::getenv(overrideVar); env && *env) {
     library = env;
-  else
+  } else {
     library = ownFolder() / fileName;
-  void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // Already in the process (libmillsim is, as a dependency of the command's
+    // verbs, when a VolumeObject asks for it): that copy, wherever it was
+    // found, never a second one from next to this library.
+    handle = dlopen(fileName, RTLD_NOW | RTLD_NOLOAD);
+  }
+  if (!handle) handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
     const char* why = dlerror();
     error = std::string("cannot load the ") + what + " library " + library.string() + ": " +

@@ -1,15 +1,17 @@
 #pragma once
-// Opening one of MillSim's optional libraries (graphics, window, audio) that
-// sit next to libmillsim: dlopen, look up its entry point, and say in one
-// sentence why not. Shared by loadGraphicsModule(), loadWindowModule() and
-// loadAudioModule().
+// Opening one of MillSim's libraries that are loaded on demand (graphics,
+// window, audio, medical, the voxels' libmillsim, the command's verbs), which
+// sit next to libmillsim_scene: dlopen, look up its entry point, and say in
+// one sentence why not.
 #include <string>
 
 namespace millsim {
 
-// `fileName` next to libmillsim unless the environment variable `overrideVar`
-// names another path; returns the entry function's result (the module table)
-// or null with `error` set. `hint` ends the error (which package is missing).
+// `fileName` next to libmillsim_scene, unless the environment variable
+// `overrideVar` names another path or the process has already loaded a
+// library of that name (that copy is used); returns the entry function's
+// result (the module table) or null with `error` set. `hint` ends the error
+// (which package is missing).
 const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, const char* what,
                                const char* hint, std::string& error);
 
