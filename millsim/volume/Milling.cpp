@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -122,6 +123,8 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
         const int rowOffset = ((j & 7) << 3) + (k & 7);
         const TissueMap::LabelGrid::TreeType::LeafNodeType* labelLeaf = block.labelLeaf;
         const int tileLabel = block.tileLabel;
+        // The segment's changed voxels, marked dirty together after it.
+        int changedLo = std::numeric_limits<int>::max(), changedHi = std::numeric_limits<int>::min();
         // Cuts voxel i of the row (density `old`, not air): true with the new
         // density in `now` if the burr lowers it and its tissue may be cut.
         auto cut = [&](int i, float old, float& now) {
@@ -138,7 +141,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
             return false;
           result.removedVolume += (phi(old) - phi(now)) * voxelVolume;
           ++result.voxelsChanged;
-          dirty.markVoxel(i, j, k);
+          changedLo = std::min(changedLo, i), changedHi = i;
           return true;
         };
         // Air first: once the burr has sunk in, most of its sphere is air
@@ -160,6 +163,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
             if (!(old <= air) && cut(i, old, now)) acc_.setValueOnly(xyz, now);
           }
         }
+        if (changedLo <= changedHi) dirty.markRun(changedLo, changedHi, j, k);
       }
     }
   totalRemoved_.add(result.removedVolume);
