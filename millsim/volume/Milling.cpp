@@ -8,6 +8,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "millsim/volume/FloorToInt.h"
+
 namespace millsim {
 
 Miller::Miller(VoxelVolume& volume, float isoValue, const TissueMap* tissues)
@@ -75,6 +77,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
   // Each leaf the box spans is looked up once, on first use, not once a row
   // (through the accessors those lookups were a third of a stamp's
   // instructions in the §8.2 replay). Numbered stamps: no clearing.
+  if (glm::any(glm::greaterThan(lo, hi))) return result;  // the reach misses the volume
   using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
   const glm::ivec3 leafLo = lo >> 3, leaves = (hi >> 3) - leafLo + 1;
   const bool tabled = leaves.x <= kStampLeaves && leaves.y <= kStampLeaves && leaves.z <= kStampLeaves;
@@ -109,7 +112,9 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
       const double chord2 = reach2 - dy * dy - dz * dz;
       if (chord2 < 0.0) continue;
       const double half = std::sqrt(chord2) / h.x;
-      const int rowLo = std::max(lo.x, int(std::floor(c.x - half))), rowHi = std::min(hi.x, int(std::ceil(c.x + half)));
+      // floorToInt, not std::floor and std::ceil (library calls on the x86-64
+      // baseline); c.x is within a reach of [lo.x, hi.x], which is not empty.
+      const int rowLo = std::max(lo.x, floorToInt(c.x - half)), rowHi = std::min(hi.x, -floorToInt(-(c.x + half)));
       // Leaf by leaf along the run, in the same voxel order as one by one
       // (so the removed volume sums identically): a leaf's buffer is read and
       // written directly, which is what setValueOnly does, without a lookup
