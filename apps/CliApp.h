@@ -20,8 +20,29 @@ inline void describeApp(CLI::App& app) {
   app.require_subcommand(1);
 }
 
+// True, having said so, when the first word is not a verb: CLI11 would only
+// say that one is required, not which word it did not know.
+// The command's own options are flags, so the first word that is not an
+// option is the verb.
+inline bool unknownVerb(const CLI::App& app, int argc, char** argv) {
+  int first = 1;
+  while (first < argc && argv[first][0] == '-') ++first;
+  if (first >= argc) return false;
+  std::string verbs;
+  bool known = false;
+  for (const CLI::App* verb : app.get_subcommands([](const CLI::App*) { return true; })) {
+    known = known || verb->check_name(argv[first]);
+    verbs += (verbs.empty() ? "" : ", ") + verb->get_name();
+  }
+  if (!known)
+    std::cerr << "millsim: error: unknown command '" << argv[first] << "' (expected one of: " << verbs
+              << ")\nRun with --help for more information.\n";
+  return !known;
+}
+
 // Parses the arguments and runs the chosen verb; `result` is what the verb set.
 inline int parseAndRun(CLI::App& app, int argc, char** argv, const int& result) {
+  if (unknownVerb(app, argc, argv)) return kExitBadInput;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
