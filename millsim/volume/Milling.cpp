@@ -24,10 +24,13 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, double radius, DirtyBlo
   if (!(radius > 0.0) || !std::isfinite(centreLocal.x + centreLocal.y + centreLocal.z)) return {};
   const glm::dvec3 h = volume_.voxelSize();
   const double ramp = (h.x + h.y + h.z) / 3.0;
-  return stampWith(
+  const bool sameBurr = lastRound_.valid && lastRound_.radius == radius;
+  const StampResult result = stampWith(
       centreLocal, radius,
       [radius, ramp](const glm::dvec3& d) { return std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0); },
-      dirty);
+      dirty, sameBurr ? &lastRound_.centre : nullptr);
+  lastRound_ = {true, volume_.localToIndex(centreLocal), radius};
+  return result;
 }
 
 StampResult Miller::stamp(const glm::dvec3& centreLocal, const glm::dvec3& axisLocal, const BurrHead& head,
@@ -53,7 +56,8 @@ StampResult Miller::stamp(const glm::dvec3& centreLocal, const glm::dvec3& axisL
 }
 
 template <class Coverage>
-StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Coverage coverageAt, DirtyBlocks& dirty) {
+StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Coverage coverageAt, DirtyBlocks& dirty,
+                              const glm::dvec3* settled) {
   StampResult result;
   const glm::dvec3 h = volume_.voxelSize();
   const double ramp = (h.x + h.y + h.z) / 3.0;
@@ -114,7 +118,26 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
       const double half = std::sqrt(chord2) / h.x;
       // floorToInt, not std::floor and std::ceil (library calls on the x86-64
       // baseline); c.x is within a reach of [lo.x, hi.x], which is not empty.
-      const int rowLo = std::max(lo.x, floorToInt(c.x - half)), rowHi = std::min(hi.x, -floorToInt(-(c.x + half)));
+      int rowLo = std::max(lo.x, floorToInt(c.x - half)), rowHi = std::min(hi.x, -floorToInt(-(c.x + half)));
+      if (settled) {
+        // Leave out the voxels nearer the settled centre o than this one
+        // (Milling.h, lastRound_): there |d|² − |d_o|² = A·i + B (m²) exceeds
+        // a millionth of a voxel², far above the rounding of either, so this
+        // stamp's coverage is at most o's and it would change nothing.
+        const glm::dvec3& o = *settled;
+        const glm::dvec3 h2 = h * h, w = h2 * (o - c);
+        const double A = 2.0 * w.x;
+        const double B = -w.x * (c.x + o.x) + w.y * (2.0 * j - c.y - o.y) + w.z * (2.0 * k - c.z - o.z);
+        const double margin = 1e-6 * std::max({h2.x, h2.y, h2.z});
+        if (A == 0.0) {
+          if (B > margin) continue;
+        } else {
+          // The last kept i, or the first, clamped before the conversion.
+          const double edge = std::clamp((margin - B) / A, double(lo.x) - 1.0, double(hi.x) + 1.0);
+          if (A > 0.0) rowHi = std::min(rowHi, floorToInt(edge));
+          else rowLo = std::max(rowLo, -floorToInt(-edge));
+        }
+      }
       // Leaf by leaf along the run, in the same voxel order as one by one
       // (so the removed volume sums identically): a leaf's buffer is read and
       // written directly, which is what setValueOnly does, without a lookup

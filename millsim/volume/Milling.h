@@ -38,7 +38,8 @@ struct StampResult {
 
 // The writer's side of milling. Holds its own accessor: use one Miller per
 // writing thread, and no other thread may read the grid while it writes (see
-// VolumeReplica for how graphics gets the changes).
+// VolumeReplica for how graphics gets the changes). Nothing else may raise a
+// density while a Miller is in use (lastRound_).
 class Miller {
 public:
   // `tissues` (optional, outliving the Miller) gives each voxel's hardness;
@@ -63,8 +64,11 @@ public:
 private:
   // The shared voxel walk: every voxel within `reach` (+ half a ramp) of the
   // centre, coverage(d) of its offset d from the centre in metres.
+  // With `settled`, the voxels nearer that index-space centre than this
+  // stamp's are left out (see lastRound_).
   template <class Coverage>
-  StampResult stampWith(const glm::dvec3& centreLocal, double reach, Coverage coverage, DirtyBlocks& dirty);
+  StampResult stampWith(const glm::dvec3& centreLocal, double reach, Coverage coverage, DirtyBlocks& dirty,
+                        const glm::dvec3* settled = nullptr);
   VoxelVolume& volume_;
   VoxelVolume::Grid::Accessor acc_;
   const TissueMap* tissues_;
@@ -82,6 +86,17 @@ private:
   };
   StampLeaf stampLeaves_[kStampLeaves * kStampLeaves * kStampLeaves];
   unsigned stampNumber_ = 0;
+  // The last round stamp: its centre (index space) and radius. Densities only
+  // fall, and this Miller is the volume's one writer, so every voxel it
+  // covered is still at most what it left there. A round stamp of the same
+  // radius covers a voxel nearer that centre than its own no more, and would
+  // change nothing there: it skips them, about half its sphere when the burr
+  // creeps (the §8.2 procedure's milling), with the same result bit for bit.
+  struct LastRound {
+    bool valid = false;
+    glm::dvec3 centre{0.0};
+    double radius = 0.0;
+  } lastRound_;
   // Copyable (a Miller is moved into its VoxelScene) though atomic.
   struct Total {
     std::atomic<double> value{0.0};

@@ -152,6 +152,57 @@ TEST(VolumeSampler, ReadsWhatMillingWroteAfterCachingTheLeaves) {
   EXPECT_GT(changed, 20) << "the stamps reached many of the points";
 }
 
+// A round stamp leaves out the voxels nearer the last round stamp's centre
+// than its own (Miller::lastRound_): exactly what a Miller that remembers
+// nothing does, stamp by stamp — the same removed volume, changed voxels,
+// dirty blocks and box, and at the end the same grid — while the burr creeps,
+// jumps, changes size, and cuts voxels denser than a first stamp leaves.
+TEST(Miller, SkippingWhatTheLastStampSettledChangesNothing) {
+  const glm::ivec3 n(40, 36, 44);
+  const float air = -1000.f, iso = 700.f;
+  std::vector<float> values(std::size_t(n.x) * n.y * n.z);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> noise(-300.f, 300.f);
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i)  // a slab below y = 20, denser (to 3000) with depth, noisy
+        values[(std::size_t(k) * n.y + j) * n.x + i] =
+            j < 20 ? std::min(3000.f, 1200.f + 100.f * float(20 - j) + noise(rng)) : air;
+  const glm::dvec3 h(1e-4, 0.8e-4, 1.2e-4);  // not cubic: the skip's test weighs each axis
+  VoxelVolume remembering = VoxelVolume::fromDense(values.data(), n, h, air);
+  VoxelVolume forgetting = VoxelVolume::fromDense(values.data(), n, h, air);
+  Miller miller(remembering, iso);
+  std::uniform_real_distribution<double> step(-0.25, 0.25), jump(10.0, 30.0);
+  glm::dvec3 c(20.0, 21.0, 22.0);  // index space
+  double radius = 5e-4;
+  int changedStamps = 0;
+  for (int s = 0; s < 400; ++s) {
+    if (s % 100 == 60) c = glm::dvec3(jump(rng), jump(rng) - 8.0, jump(rng));  // elsewhere
+    else c += glm::dvec3(step(rng), step(rng) - 0.08, step(rng));  // creeping, mostly down
+    if (s == 200) radius = 3.5e-4;
+    if (s == 300) radius = 5e-4;
+    DirtyBlocks a(n), b(n);
+    const StampResult ra = miller.stamp(remembering.indexToLocal(c), radius, a);
+    Miller fresh(forgetting, iso);
+    const StampResult rb = fresh.stamp(forgetting.indexToLocal(c), radius, b);
+    ASSERT_EQ(ra.removedVolume, rb.removedVolume) << "stamp " << s;
+    ASSERT_EQ(ra.voxelsChanged, rb.voxelsChanged) << "stamp " << s;
+    ASSERT_EQ(a.origins(), b.origins()) << "stamp " << s;
+    ASSERT_EQ(a.voxelLo(), b.voxelLo()) << "stamp " << s;
+    ASSERT_EQ(a.voxelHi(), b.voxelHi()) << "stamp " << s;
+    changedStamps += ra.voxelsChanged > 0;
+  }
+  EXPECT_GT(changedStamps, 200) << "the burr cut in most stamps";
+  int differ = 0;
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i) {
+        const openvdb::Coord at(i, j, k);
+        differ += remembering.grid().tree().getValue(at) != forgetting.grid().tree().getValue(at);
+      }
+  EXPECT_EQ(differ, 0);
+}
+
 // The sampler's window (a dense copy around focus()) reads exactly what the
 // grid holds: inside it, across its faces and outside it; after milling once
 // told of it (refresh(), as VoxelScene::mill does); and after moving on.
