@@ -20,10 +20,9 @@ inline void describeApp(CLI::App& app) {
   app.require_subcommand(1);
 }
 
-// True, having said so, when the first word is not a verb: CLI11 would only
-// say that one is required, not which word it did not know.
-// The command's own options are flags, so the first word that is not an
-// option is the verb.
+// True, having said so, when the first word that is not an option (the
+// command's own options are flags) is not a verb: CLI11 would only say that
+// one is required, not which word it did not know.
 inline bool unknownVerb(const CLI::App& app, int argc, char** argv) {
   int first = 1;
   while (first < argc && argv[first][0] == '-') ++first;

@@ -22,13 +22,9 @@ int main(int argc, char** argv) {
     return parseAndRun(app, argc, argv, result);
   }
   std::string error;
-  const auto* cli = static_cast<const CliModule*>(millsim::openSiblingLibrary(
-      "libmillsim_cli.so", "MILLSIM_CLI_LIBRARY", "millsim_cli_module", "command",
-      "it is built and installed with the millsim command", error));
-  if (cli && cli->abiVersion != kCliAbiVersion) {
-    error = "the command library is not of MillSim command ABI version " + std::to_string(kCliAbiVersion);
-    cli = nullptr;
-  }
+  const auto* cli = static_cast<const CliModule*>(
+      millsim::openSiblingLibrary("libmillsim_cli.so", "MILLSIM_CLI_LIBRARY", "millsim_cli_module", kCliAbiVersion,
+                                  "command", "it is built and installed with the millsim command", error));
   if (!cli) {
     std::cerr << "millsim: error: " << error << "\n";
     return kExitFailure;

@@ -20,8 +20,8 @@ std::filesystem::path ownFolder() {
 
 }  // namespace
 
-const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, const char* what,
-                               const char* hint, std::string& error) {
+const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, int abiVersion,
+                               const char* what, const char* hint, std::string& error) {
   std::filesystem::path library;
   void* handle = nullptr;
   if (const char* env = std::getenv(overrideVar); env && *env) {
@@ -43,7 +43,16 @@ const void* openSiblingLibrary(const char* fileName, const char* overrideVar, co
   using Entry = const void* (*)();
   auto function = reinterpret_cast<Entry>(dlsym(handle, entry));
   const void* module = function ? function() : nullptr;
-  if (!module) error = library.string() + " is not a MillSim " + what + " library (no " + entry + ")";
+  if (!module) {
+    error = library.string() + " is not a MillSim " + what + " library (no " + entry + ")";
+    return nullptr;
+  }
+  // Every module table starts with its ABI version (an int).
+  if (*static_cast<const int*>(module) != abiVersion) {
+    error = std::string("the ") + what + " library is not of MillSim " + what + " ABI version " +
+            std::to_string(abiVersion);
+    return nullptr;
+  }
   return module;
 }
 

@@ -10,9 +10,10 @@ namespace millsim {
 // `fileName` next to libmillsim_scene, unless the environment variable
 // `overrideVar` names another path or the process has already loaded a
 // library of that name (that copy is used); returns the entry function's
-// result (the module table) or null with `error` set. `hint` ends the error
-// (which package is missing).
-const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, const char* what,
-                               const char* hint, std::string& error);
+// result (the module table, whose first member is its `int abiVersion`) when
+// that table is of `abiVersion`, else null with `error` set. `hint` ends the
+// error when the library cannot be loaded (which package is missing).
+const void* openSiblingLibrary(const char* fileName, const char* overrideVar, const char* entry, int abiVersion,
+                               const char* what, const char* hint, std::string& error);
 
 }  // namespace millsim

@@ -13,14 +13,11 @@ namespace millsim {
 namespace {
 
 const GraphicsModule* openGraphicsModule(std::string& error) {
-  const auto* module = static_cast<const GraphicsModule*>(
-      openSiblingLibrary("libmillsim_graphics.so", "MILLSIM_GRAPHICS_LIBRARY", "millsim_graphics_module", "graphics",
-                         "graphics needs Mesa's OSMesa: Debian package libosmesa6", error));
-  if (module && module->abiVersion != kGraphicsAbiVersion) {
-    error = "the graphics library is not of MillSim graphics ABI version " + std::to_string(kGraphicsAbiVersion);
-    return nullptr;
-  }
-  return module;  // the library stays loaded for the life of the process
+  // The library stays loaded for the life of the process.
+  return static_cast<const GraphicsModule*>(
+      openSiblingLibrary("libmillsim_graphics.so", "MILLSIM_GRAPHICS_LIBRARY", "millsim_graphics_module",
+                         kGraphicsAbiVersion, "graphics", "graphics needs Mesa's OSMesa: Debian package libosmesa6",
+                         error));
 }
 
 }  // namespace

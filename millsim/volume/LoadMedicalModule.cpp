@@ -13,15 +13,12 @@ namespace millsim {
 namespace {
 
 const MedicalModule* openMedicalModule(std::string& error) {
-  const auto* module = static_cast<const MedicalModule*>(openSiblingLibrary(
-      "libmillsim_medical.so", "MILLSIM_MEDICAL_LIBRARY", "millsim_medical_module", "medical-image",
+  // The library stays loaded for the life of the process.
+  return static_cast<const MedicalModule*>(openSiblingLibrary(
+      "libmillsim_medical.so", "MILLSIM_MEDICAL_LIBRARY", "millsim_medical_module", kMedicalAbiVersion,
+      "medical-image",
       "MetaImage, VTI and DICOM reading needs VTK 9.1 and GDCM 3.0: Debian packages libvtk9.1 and libgdcm3.0",
       error));
-  if (module && module->abiVersion != kMedicalAbiVersion) {
-    error = "the medical-image library is not of MillSim medical ABI version " + std::to_string(kMedicalAbiVersion);
-    return nullptr;
-  }
-  return module;  // the library stays loaded for the life of the process
 }
 
 }  // namespace

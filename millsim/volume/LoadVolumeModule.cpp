@@ -13,13 +13,9 @@ const VolumeModule* loadVolumeModule(std::string& error) {
   static std::string failure;
   std::lock_guard lock(mutex);
   if (!module && failure.empty()) {
-    module = static_cast<const VolumeModule*>(
-        openSiblingLibrary(MILLSIM_VOLUME_LIBRARY_NAME, "MILLSIM_VOLUME_LIBRARY", "millsim_volume_module", "volume",
-                           "it is built and installed with libmillsim_scene", failure));
-    if (module && module->abiVersion != kVolumeAbiVersion) {
-      failure = "the volume library is not of MillSim volume ABI version " + std::to_string(kVolumeAbiVersion);
-      module = nullptr;
-    }
+    module = static_cast<const VolumeModule*>(openSiblingLibrary(
+        MILLSIM_VOLUME_LIBRARY_NAME, "MILLSIM_VOLUME_LIBRARY", "millsim_volume_module", kVolumeAbiVersion, "volume",
+        "it is built and installed with libmillsim_scene", failure));
   }
   error = failure;
   return module;  // the library stays loaded for the life of the process

@@ -17,12 +17,9 @@ const WindowModule& loadWindowModule() {
   std::lock_guard lock(mutex);
   if (!module && error.empty()) {
     module = static_cast<const WindowModule*>(
-        openSiblingLibrary("libmillsim_window.so", "MILLSIM_WINDOW_LIBRARY", "millsim_window_module", "window",
+        openSiblingLibrary("libmillsim_window.so", "MILLSIM_WINDOW_LIBRARY", "millsim_window_module",
+                           kWindowAbiVersion, "window",
                            "the window needs SDL2 and OpenGL: Debian packages libsdl2-2.0-0 and libgl1", error));
-    if (module && module->abiVersion != kWindowAbiVersion) {
-      module = nullptr;
-      error = "the window library is not of MillSim window ABI version " + std::to_string(kWindowAbiVersion);
-    }
   }
   if (!module) throw GraphicsError(error);
   return *module;  // the library stays loaded for the life of the process
