@@ -601,7 +601,7 @@ VoxelVolume medical::readDicom(const fs::path& fileOrFolder, float airValue) {
   const std::size_t perSlice = std::size_t(first.rows) * std::size_t(first.cols);
   std::vector<float> values(perSlice * slices.size());
   for (std::size_t k = 0; k < slices.size(); ++k) readSlicePixels(slices[k], values.data() + k * perSlice);
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue);
+  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
 }
 
 }  // namespace millsim

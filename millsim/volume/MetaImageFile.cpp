@@ -261,7 +261,7 @@ VoxelVolume medical::readMetaImage(const fs::path& file, float airValue) {
   } catch (const std::runtime_error& e) {
     throw VolumeError(name + ": " + e.what());
   }
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue);
+  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
 }
 
 }  // namespace millsim

@@ -460,7 +460,7 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
       throw VolumeError(name + ": header/size mismatch: the header promises " + std::to_string(n) + " values, " +
                         where + " has " + std::to_string(count));
   }
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue);
+  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
 }
 
 void writeNrrd(const VoxelVolume& volume, const fs::path& file, bool gzip) {

@@ -1,7 +1,9 @@
 #include "millsim/volume/VoxelVolume.h"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <sstream>
 #include <openvdb/tools/Dense.h>
 #include <openvdb/tools/Prune.h>
 
@@ -32,6 +34,13 @@ VoxelVolume::VoxelVolume(Grid::Ptr grid, glm::ivec3 dims, glm::dvec3 voxelSize, 
   grid_->tree().voxelizeActiveTiles();
 }
 
+void refuseNonFiniteDensity(const std::string& what, float value, int i, int j, int k) {
+  std::ostringstream m;
+  m << what << ": voxel (" << i << ", " << j << ", " << k << ") has the density " << value
+    << "; a density must be a finite number";
+  throw VolumeError(m.str());
+}
+
 void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxelSize) {
   if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
     throw VolumeError(what + ": dimensions " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
@@ -47,8 +56,18 @@ void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxel
                         " is not a positive finite number of metres");
 }
 
-VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue) {
-  checkVolumeShape("volume", dims, voxelSize);
+VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue,
+                                   const std::string& source) {
+  checkVolumeShape(source, dims, voxelSize);
+  const std::size_t n = std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
+  bool allFinite = true;
+  for (std::size_t i = 0; i < n; ++i) allFinite &= std::isfinite(values[i]);  // no early exit: it vectorises
+  if (!allFinite) {
+    const std::size_t at = std::size_t(std::find_if_not(values, values + n, [](float v) { return std::isfinite(v); }) - values);
+    const std::size_t row = at / std::size_t(dims.x);
+    refuseNonFiniteDensity(source, values[at], int(at % std::size_t(dims.x)), int(row % std::size_t(dims.y)),
+                           int(row / std::size_t(dims.y)));
+  }
   std::call_once(vdbInitialized, [] { openvdb::initialize(); });
   auto grid = Grid::create(airValue);
   const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(dims.x - 1, dims.y - 1, dims.z - 1));

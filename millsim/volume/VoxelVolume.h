@@ -33,8 +33,10 @@ public:
   VoxelVolume& operator=(VoxelVolume&&) noexcept;
 
   // Copies a dense block (x fastest, then y, then z). Values at or below
-  // airValue become background. Throws VolumeError on bad sizes or spacing.
-  static VoxelVolume fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue);
+  // airValue become background. Throws VolumeError on bad sizes or spacing,
+  // or on a density that is not finite; `source` (a file) names it there.
+  static VoxelVolume fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue,
+                               const std::string& source = "volume");
 
   const glm::ivec3& dims() const { return dims_; }
   const glm::dvec3& voxelSize() const { return voxelSize_; }
@@ -69,6 +71,11 @@ private:
 // Refuses dimensions that are not positive or would not fit in memory, and
 // spacing that is not positive and finite. `what` names the source in the message.
 void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxelSize);
+
+// Throws the VolumeError for voxel (i, j, k) of `what` holding a density that
+// is not finite. A NaN compares false with air, so it would stay material and
+// turn every field sample near it into NaN: readers refuse it where it is read.
+[[noreturn]] void refuseNonFiniteDensity(const std::string& what, float value, int i, int j, int k);
 
 // Largest volume accepted, in voxels (4 GiB of floats).
 inline constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 30;

@@ -10,6 +10,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -721,6 +722,98 @@ TEST(VolumeIOVdb, RefusesAGridTooLargeFromItsStatistics) {
   }
   EXPECT_VOLUME_ERROR(readVdb(dir.path() / "huge.vdb", 0.f), dir.path() / "huge.vdb",
                       "grid 'density' spans [0, 0, 0] to [3975, 3975, 3975], more than the limit of 1073741824 voxels");
+}
+
+// readVdb copies the file's tree tile by tile and leaf by leaf, never dense.
+// What it must give is what a dense copy means: every voxel of the box takes
+// its value if active, the file's background if not, and values at or below
+// air become inactive air. Checked against exactly that, built voxel by
+// voxel, through fromDense; with tiles of two levels cut by the box, inactive
+// voxels holding other values, active voxels outside the box (one NaN), a box
+// that is no multiple of 8, and a background that is air and one that is not.
+TEST(VolumeIOVdb, TheSparseCopyIsWhatADenseCopyMeans) {
+  ScratchDir dir;
+  openvdb::initialize();
+  const float air = -1000.f;
+  const glm::ivec3 dims(21, 19, 140);
+  for (const float background : {-1000.f, -2000.f, 300.f}) {
+    auto grid = openvdb::FloatGrid::create(background);
+    grid->setName("density");
+    auto& tree = grid->tree();
+    tree.addTile(1, openvdb::Coord(8, 8, 0), 900.f, true);     // an 8³ tile inside the box
+    tree.addTile(1, openvdb::Coord(16, 16, 8), 500.f, true);   // cut by x = 20 and y = 18
+    tree.addTile(1, openvdb::Coord(0, 8, 16), -1500.f, true);  // active, below air
+    tree.addTile(2, openvdb::Coord(0, 0, 128), 700.f, true);   // a 128³ tile cut to 12 slices
+    tree.addTile(1, openvdb::Coord(0, 0, 24), 40.f, false);    // inactive: the background
+    for (int i = 0; i < 21; ++i)
+      for (int k = 30; k < 50; ++k) tree.setValue(openvdb::Coord(i, (i * 7 + k) % 19, k), float(10 * i - 1100 + k));
+    tree.setValueOff(openvdb::Coord(3, 3, 3), 800.f);  // an inactive voxel in a leaf
+    tree.setValue(openvdb::Coord(4, 3, 3), -1000.f);    // exactly air
+    tree.setValue(openvdb::Coord(-1, 2, 2), 600.f);     // outside the box
+    tree.setValue(openvdb::Coord(5, 19, 2), std::nanf(""));
+    grid->insertMeta("millsim_dims", openvdb::Vec3IMetadata(openvdb::Vec3i(dims.x, dims.y, dims.z)));
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    const auto file = dir.path() / "sparse.vdb";
+    {
+      openvdb::io::File f(file.string());
+      f.write(openvdb::GridPtrVec{grid});
+      f.close();
+    }
+    std::vector<float> dense;
+    auto acc = grid->getConstAccessor();
+    for (int k = 0; k < dims.z; ++k)
+      for (int j = 0; j < dims.y; ++j)
+        for (int i = 0; i < dims.x; ++i) {
+          const openvdb::Coord c(i, j, k);
+          dense.push_back(acc.isValueOn(c) ? acc.getValue(c) : background);
+        }
+    const VoxelVolume expected = VoxelVolume::fromDense(dense.data(), dims, glm::dvec3(0.1e-3), air);
+    const VoxelVolume read = readVdb(file, air);
+    SCOPED_TRACE("background " + std::to_string(background));
+    expectSame(read, expected);
+    EXPECT_EQ(read.grid().tree().leafCount(), expected.grid().tree().leafCount());
+    EXPECT_EQ(read.memoryBytes(), expected.memoryBytes());
+    EXPECT_EQ(read.grid().tree().activeTileCount(), 0u) << "material in tiles: milling would allocate";
+  }
+}
+
+// A density that is not a number (or is infinite) is refused with the voxel
+// that holds it, whichever reader read it: compared with air, a NaN is not
+// air, so it stayed material and made the field near it NaN.
+TEST(VolumeIONonFinite, EveryReaderRefusesADensityThatIsNotFinite) {
+  ScratchDir dir;
+  openvdb::initialize();
+  const glm::ivec3 d(3, 2, 2);
+  const auto nanNrrd = dir.write("nan.nrrd", nrrdHeader("float", d, "spacings: 0.1 0.1 0.1", "ascii", "") +
+                                                 "1 2 3 4 5 6 7 nan 9 10 11 12\n");
+  EXPECT_VOLUME_ERROR(readNrrd(nanNrrd, kAir), nanNrrd, "voxel (1, 0, 1) has the density nan");
+  const auto infNrrd = dir.write("inf.nrrd", nrrdHeader("float", d, "spacings: 0.1 0.1 0.1", "ascii", "") +
+                                                 "1 2 3 4 5 -inf 7 8 9 10 11 12\n");
+  EXPECT_VOLUME_ERROR(readNrrd(infNrrd, kAir), infNrrd, "voxel (2, 1, 0) has the density -inf");
+
+  auto grid = openvdb::FloatGrid::create(0.f);
+  grid->setName("density");
+  grid->tree().setValue(openvdb::Coord(0, 0, 0), 5.f);
+  grid->tree().setValue(openvdb::Coord(2, 1, 3), std::numeric_limits<float>::infinity());
+  const auto write = [&](const char* name) {
+    const auto f = dir.path() / name;
+    openvdb::io::File out(f.string());
+    out.write(openvdb::GridPtrVec{grid});
+    out.close();
+    return f;
+  };
+  const auto infVdb = write("inf.vdb");
+  EXPECT_VOLUME_ERROR(readVdb(infVdb, 0.f), infVdb, "voxel (2, 1, 3) has the density inf");
+  grid->tree().setValue(openvdb::Coord(2, 1, 3), 1.f);
+  grid->tree().addTile(1, openvdb::Coord(8, 0, 0), std::nanf(""), true);
+  const auto nanTile = write("nan_tile.vdb");
+  EXPECT_VOLUME_ERROR(readVdb(nanTile, 0.f), nanTile, "voxel (8, 0, 0) has the density nan");
+  auto nanBackground = openvdb::FloatGrid::create(std::nanf(""));
+  nanBackground->setName("density");
+  nanBackground->tree().setValue(openvdb::Coord(1, 1, 1), 5.f);
+  grid = nanBackground;
+  const auto nanBg = write("nan_background.vdb");
+  EXPECT_VOLUME_ERROR(readVdb(nanBg, 0.f), nanBg, "has the background value nan");
 }
 
 // ---- loadVolume ------------------------------------------------------------------------
