@@ -36,6 +36,32 @@ struct DenseFine {
   }
 };
 
+// The densest fine voxel of each coarse voxel of the box [lo, lo + dim) (air
+// outside the volume's coarseDims), written z fastest as DenseFine lays it
+// out. S is the scale when known at compile time (0: `scale` at run time):
+// the s³ reads then unroll, where the run-time loops were 38 % of a scale-3
+// milling frame's instructions (bench/MillingBench.cpp, callgrind).
+template <int S>
+void densestOfEach(const DenseFine& fine, float* out, glm::ivec3 lo, glm::ivec3 dim, glm::ivec3 coarseDims, float air,
+                   int scale = S) {
+  const int s = S > 0 ? S : scale;
+  const std::size_t sx = fine.strideX(), sy = fine.strideY();
+  for (int I = lo.x; I < lo.x + dim.x; ++I)
+    for (int J = lo.y; J < lo.y + dim.y; ++J)
+      for (int K = lo.z; K < lo.z + dim.z; ++K) {
+        float v = air;
+        if (I >= 0 && J >= 0 && K >= 0 && I < coarseDims.x && J < coarseDims.y && K < coarseDims.z) {
+          const float* block = fine.data + fine.index(I * s, J * s, K * s);
+          for (int i = 0; i < s; ++i)
+            for (int j = 0; j < s; ++j) {
+              const float* run = block + std::size_t(i) * sx + std::size_t(j) * sy;
+              for (int k = 0; k < s; ++k) v = std::max(v, run[k]);
+            }
+        }
+        *out++ = v;
+      }
+}
+
 // The fine voxels read through the grid's accessor (a bucket built or rebuilt whole).
 template <class Accessor> struct AccessorFine {
   const Accessor& acc;
@@ -335,11 +361,6 @@ int PointShell::makePoints(const Fine& fine, float v, const float n[6], int I, i
   return 1;
 }
 
-void PointShell::refreshSuperOfBucket(int b) {
-  const int bx = b % bucketDims_.x, by = (b / bucketDims_.x) % bucketDims_.y, bz = b / (bucketDims_.x * bucketDims_.y);
-  refreshSuper(((bz / kSuper) * superDims_.y + by / kSuper) * superDims_.x + bx / kSuper);
-}
-
 void PointShell::rebuildAll(const VoxelVolume& volume) {
   auto acc = volume.grid().getConstAccessor();
   // A fresh tight layout from the start of the array (each bucket is
@@ -427,21 +448,12 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   // Coarse values of E, exactly as coarse() computes them (the densest fine
   // voxel). At scale 1 they are the fine voxels: read from F itself.
   const DenseFine coarseCopy{coarseScratch_.data(), eLo, eDim};
-  if (scale_ > 1)
-    for (int K = eLo.z; K < eLo.z + eDim.z; ++K)
-      for (int J = eLo.y; J < eLo.y + eDim.y; ++J)
-        for (int I = eLo.x; I < eLo.x + eDim.x; ++I) {
-          float v = volume_->airValue();
-          if (I >= 0 && J >= 0 && K >= 0 && I < coarseDims_.x && J < coarseDims_.y && K < coarseDims_.z) {
-            const float* block = fineScratch_.data() + fine.index(I * scale_, J * scale_, K * scale_);
-            for (int i = 0; i < scale_; ++i)
-              for (int j = 0; j < scale_; ++j) {
-                const float* run = block + std::size_t(i) * fine.strideX() + std::size_t(j) * fine.strideY();
-                for (int k = 0; k < scale_; ++k) v = std::max(v, run[k]);
-              }
-          }
-          coarseScratch_[coarseCopy.index(I, J, K)] = v;
-        }
+  if (scale_ == 2)
+    densestOfEach<2>(fine, coarseScratch_.data(), eLo, eDim, coarseDims_, volume_->airValue());
+  else if (scale_ == 3)
+    densestOfEach<3>(fine, coarseScratch_.data(), eLo, eDim, coarseDims_, volume_->airValue());
+  else if (scale_ > 1)
+    densestOfEach<0>(fine, coarseScratch_.data(), eLo, eDim, coarseDims_, volume_->airValue(), scale_);
   // The coarse values, dense: F itself at scale 1, else E's copy.
   const DenseFine coarse = scale_ == 1 ? fine : coarseCopy;
   const std::ptrdiff_t sx = std::ptrdiff_t(coarse.strideX()), sy = std::ptrdiff_t(coarse.strideY());
@@ -501,9 +513,14 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
         // The same cap as a rebuild (the tail of a bucket with more points than
         // voxels, which real data does not reach, is dropped by both).
         store(b, merged, false);
-        refreshSuperOfBucket(b);
         ++rebuilt;
       }
+  // Each super-bucket over the buckets above once, not once per bucket (the
+  // box spans about 11 buckets a frame at scale 1, mostly of one super-bucket).
+  const glm::ivec3 sLo = bLo / kSuper, sHi = bHi / kSuper;
+  for (int z = sLo.z; z <= sHi.z; ++z)
+    for (int y = sLo.y; y <= sHi.y; ++y)
+      for (int x = sLo.x; x <= sHi.x; ++x) refreshSuper((z * superDims_.y + y) * superDims_.x + x);
   return true;
 }
 

@@ -209,7 +209,6 @@ private:
   // Slides every bucket down in array order, ranges cut to their size.
   void compact();
   void refreshSuper(int s);
-  void refreshSuperOfBucket(int b);
   bool updateRegion(const VoxelVolume& volume, glm::ivec3 voxelLo, glm::ivec3 voxelHi, int& rebuilt);
 
   const VoxelVolume* volume_;
