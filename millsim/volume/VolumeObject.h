@@ -25,7 +25,7 @@ public:
   MFString url{this, "url", Access::InitializeOnly, {"phantom:tooth"},
                "Volume sources, first loadable wins: a .vdb, .nrrd/.nhdr, .mha/.mhd, .vti or .dcm file, a folder "
                "of DICOM slices, or phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1] (in an X3D file each & is written "
-               "&amp;)."};
+               "&amp;). Every density must be a finite number."};
   SFFloat isoValue{this, "isoValue", Access::InitializeOnly, 700.f,
                    "Density above which a point is inside the object (Hounsfield-like units).", Range::closed(-1e9, 1e9)};
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
