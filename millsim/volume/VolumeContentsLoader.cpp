@@ -97,12 +97,22 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
   const std::filesystem::path base = node.location().file.empty()
                                          ? std::filesystem::path()
                                          : std::filesystem::path(node.location().file).parent_path();
+  const glm::dvec3 override(node.voxelSize.get());
+  // The field's own range is [0, kMaxVoxelSize]: 0 0 0 takes the file's, and
+  // a range cannot leave out what lies between 0 and the smallest voxel.
+  if (override != glm::dvec3(0.0))
+    for (int a = 0; a < 3; ++a)
+      if (!(override[a] >= kMinVoxelSize)) {
+        sink.error(node.location(), "VolumeObject voxelSize " + formatNumber(node.voxelSize.get()[a]) + " m along " + "xyz"[a] +
+                                        " is below the smallest voxel size, " + formatNumber(kMinVoxelSize) +
+                                        " m (voxelSize is in metres: 0.1 mm is 0.0001; 0 0 0 takes the file's)");
+        return nullptr;
+      }
   std::string failures;
   std::vector<std::string> failed;
   for (const std::string& u : node.url.get()) {
     try {
       LoadedVolume loaded = loadVolume(u, base, node.airValue.get());
-      const glm::dvec3 override(node.voxelSize.get());
       auto contents = std::make_unique<VoxelContents>(
           override != glm::dvec3(0.0)
               ? VoxelVolume(loaded.volume.gridPtr(), loaded.volume.dims(), override, node.airValue.get())

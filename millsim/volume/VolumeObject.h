@@ -12,6 +12,7 @@
 #include "millsim/core/NodeKinds.h"
 #include "millsim/volume/Tissue.h"
 #include "millsim/volume/VolumeContents.h"
+#include "millsim/volume/VoxelSizeRange.h"
 
 namespace millsim {
 
@@ -31,7 +32,8 @@ public:
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
                    "Density of air; values at or below it are stored as the sparse background.", Range::closed(-1e9, 1e9)};
   SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
-                    "Voxel size (m); 0 0 0 takes it from the file (millimetres there).", Range::closed(0, 1).in(quantity::length)};
+                    "Voxel size (m), each 1 µm to 10 mm; 0 0 0 takes it from the file (millimetres there).",
+                    Range::closed(0, kMaxVoxelSize).in(quantity::length)};
   MFNodeOf<Tissue> tissues{this, "tissues", Access::InitializeOnly,
                            "The volume's materials (Tissue nodes): the first that matches a voxel is its tissue; "
                            "material no tissue matches is cut with hardness 1."};

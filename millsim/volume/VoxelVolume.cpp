@@ -54,6 +54,16 @@ void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxel
     if (!std::isfinite(voxelSize[a]) || voxelSize[a] <= 0.0)
       throw VolumeError(what + ": voxel size " + std::to_string(voxelSize[a]) + " along axis " + "xyz"[a] +
                         " is not a positive finite number of metres");
+  for (int a = 0; a < 3; ++a)
+    if (voxelSize[a] < kMinVoxelSize || voxelSize[a] > kMaxVoxelSize) {
+      std::ostringstream m;
+      m << what << ": voxel size " << voxelSize[a] << " m (" << voxelSize[a] * 1e3 << " mm) along axis " << "xyz"[a]
+        << " is outside " << kMinVoxelSize << " to " << kMaxVoxelSize << " m (" << kMinVoxelSize * 1e3 << " to "
+        << kMaxVoxelSize * 1e3 << " mm)";
+      if (voxelSize[a] < kMinVoxelSize)
+        m << "; volume files give spacings in millimetres: was it written in metres?";
+      throw VolumeError(m.str());
+    }
 }
 
 VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue,

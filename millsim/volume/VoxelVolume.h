@@ -15,6 +15,7 @@
 #include <openvdb/openvdb.h>
 
 #include "millsim/volume/VolumeError.h"
+#include "millsim/volume/VoxelSizeRange.h"
 
 namespace millsim {
 
@@ -69,7 +70,8 @@ private:
 };
 
 // Refuses dimensions that are not positive or would not fit in memory, and
-// spacing that is not positive and finite. `what` names the source in the message.
+// spacing that is not positive and finite or outside [kMinVoxelSize,
+// kMaxVoxelSize]. `what` names the source in the message.
 void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxelSize);
 
 // Throws the VolumeError for voxel (i, j, k) of `what` holding a density that

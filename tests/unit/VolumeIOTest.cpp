@@ -441,6 +441,12 @@ TEST(VolumeIONrrd, BadFiles) {
     const auto f = nrrd(name, nrrdHeader("short", d, spacing, "raw"), data);
     EXPECT_VOLUME_ERROR(readNrrd(f, kAir), f, "spacing along");
   }
+  // Positive and finite, but no voxel: in metres where millimetres are read, or a kilometre.
+  const auto metres = nrrd("metres.nrrd", nrrdHeader("short", d, "spacings: 0.0001 0.0001 0.0001", "raw"), data);
+  EXPECT_VOLUME_ERROR(readNrrd(metres, kAir), metres, "voxel size 1e-07 m (0.0001 mm) along axis x is outside 1e-06 to 0.01 m");
+  EXPECT_VOLUME_ERROR(readNrrd(metres, kAir), metres, "was it written in metres?");
+  const auto kilometre = nrrd("kilometre.nrrd", nrrdHeader("short", d, "spacings: 0.1 0.1 1e6", "raw"), data);
+  EXPECT_VOLUME_ERROR(readNrrd(kilometre, kAir), kilometre, "voxel size 1000 m (1e+06 mm) along axis z is outside");
   const auto noSpacing = nrrd("no_spacing.nrrd", nrrdHeader("short", d, "# no spacing", "raw"), data);
   EXPECT_VOLUME_ERROR(readNrrd(noSpacing, kAir), noSpacing, "voxel spacing is unknown");
 

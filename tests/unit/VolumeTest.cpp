@@ -70,6 +70,9 @@ TEST(VoxelVolume, BadShapesAreRefused) {
   EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(0.0), 0.f), VolumeError);
   EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(-1e-3), 0.f), VolumeError);
   EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(std::nan("")), 0.f), VolumeError);
+  EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(0.1e-3, 0.9e-6, 0.1e-3), 0.f), VolumeError);
+  EXPECT_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(0.1e-3, 0.1e-3, 0.011), 0.f), VolumeError);
+  EXPECT_NO_THROW(VoxelVolume::fromDense(&one, {1, 1, 1}, glm::dvec3(kMinVoxelSize, 0.1e-3, kMaxVoxelSize), 0.f));
   try {
     checkVolumeShape("big.nrrd", {100000, 100000, 100000}, glm::dvec3(1e-3));
     FAIL();
