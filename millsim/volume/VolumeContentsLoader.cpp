@@ -105,7 +105,8 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
       if (!(override[a] >= kMinVoxelSize)) {
         sink.error(node.location(), "VolumeObject voxelSize " + formatNumber(node.voxelSize.get()[a]) + " m along " + "xyz"[a] +
                                         " is below the smallest voxel size, " + formatNumber(kMinVoxelSize) +
-                                        " m (voxelSize is in metres: 0.1 mm is 0.0001; 0 0 0 takes the file's)");
+                                        " m (lengths are metres unless a <unit> statement says otherwise: 0.1 mm is 0.0001; 0 0 0 "
+                                        "takes the file's)");
         return nullptr;
       }
   std::string failures;
