@@ -6,15 +6,24 @@
 // volume's dimensions, which the active voxels alone cannot tell when the
 // border is air).
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <string>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Prune.h>
 
+#include "millsim/volume/VdbStructureCheck.h"
 #include "millsim/volume/VolumeIO.h"
 
 namespace fs = std::filesystem;
@@ -113,30 +122,112 @@ openvdb::FloatGrid::Ptr copyClipped(const openvdb::FloatGrid& file, glm::ivec3 d
   return out;
 }
 
-}  // namespace
-
-VoxelVolume readVdb(const fs::path& file, float airValue) {
-  const std::string name = file.string();
-  requireFile(file, "a .vdb file");
-  openvdb::initialize();
-
-  openvdb::GridPtrVecPtr grids;
+// Every grid of the file, read now. The statistics OpenVDB writes with every
+// grid (bounding box, memory) are read without the trees, so a grid far
+// larger than a volume may be is refused before its tree is allocated. A file
+// without them (or one that lies) is still bounded by the voxel-count check.
+openvdb::GridPtrVecPtr readGrids(const std::string& name) {
   try {
     openvdb::io::File f(name);
     f.open(/*delayLoad=*/false);  // read everything now, so that a bad file fails here
-    // The statistics OpenVDB writes with every grid (bounding box, memory)
-    // are read without the trees, so a grid far larger than a volume may be
-    // is refused before its tree is allocated. A file without them (or one
-    // that lies) is still bounded by the voxel-count check below.
     const openvdb::GridPtrVecPtr described = f.readAllGridMetadata();  // kept: the loop must not outlive it
     for (const auto& g : *described) refuseOversizedGrid(name, *g);
-    grids = f.getGrids();
+    openvdb::GridPtrVecPtr grids = f.getGrids();
     f.close();
+    return grids;
   } catch (const VolumeError&) {
     throw;
   } catch (const std::exception& e) {
     throw VolumeError(name + ": cannot read as an OpenVDB file: " + e.what());
   }
+}
+
+// OpenVDB 10 reads a chunk that the file marks as stored uncompressed into
+// its buffer before it compares the chunk's size with the buffer's
+// (io/Compression.cc, bloscFromStream and unzipFromStream): a corrupt size
+// writes past the buffer, and the process crashed later (found by mutating a
+// small .vdb; under the release build a segmentation fault at exit). So a
+// child process reads the file first, with its memory and CPU time bounded;
+// this process reads it only after the child has read it whole. A child that
+// fails passes its error up a pipe; one that crashes or is stopped by its
+// limits makes the file refused. About 1 ms for the fork and one more read
+// of the file (20 ms for the full-size phantom).
+void readInAChildFirst(const std::string& name) {
+  int fds[2];
+  if (pipe(fds) != 0) throw VolumeError(name + ": cannot check the file (pipe: " + std::strerror(errno) + ")");
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::file_size(name, ec);
+  // The child's address space: what this process maps now (read before the
+  // fork), plus what a volume's grid may take and a margin.
+  long pages = 0;
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
+    std::fclose(statm);
+  }
+  const rlim_t addressSpace = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + rlim_t(kMaxVoxels) * 8 + (rlim_t(1) << 30);
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]), close(fds[1]);
+    throw VolumeError(name + ": cannot check the file (fork: " + std::strerror(errno) + ")");
+  }
+  if (pid == 0) {  // the child: read, report, and leave without running anything of the parent's
+    close(fds[0]);
+    // A minute of CPU time and a second per megabyte read is far above a real
+    // file's need; a volume's grid may take up to 8 GiB (refuseOversizedGrid).
+    rlimit cpu{};
+    cpu.rlim_cur = cpu.rlim_max = rlim_t(60 + (ec ? 0 : bytes >> 20));
+    setrlimit(RLIMIT_CPU, &cpu);
+    rlimit as{};
+    as.rlim_cur = as.rlim_max = addressSpace;
+    setrlimit(RLIMIT_AS, &as);
+    int code = 0;
+    std::string message;
+    try {
+      readGrids(name);
+    } catch (const std::exception& e) {
+      message = e.what(), code = 1;
+    } catch (...) {
+      message = name + ": cannot read as an OpenVDB file", code = 1;
+    }
+    for (std::size_t at = 0; at < message.size();) {
+      const ssize_t n = write(fds[1], message.data() + at, message.size() - at);
+      if (n <= 0) break;
+      at += std::size_t(n);
+    }
+    _exit(code);
+  }
+  close(fds[1]);
+  std::string message;
+  char buffer[4096];
+  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) != 0;) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) break;
+    message.append(buffer, std::size_t(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && !message.empty()) throw VolumeError(message);
+  const int signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  throw VolumeError(name + ": corrupt OpenVDB file: OpenVDB's reader " +
+                    (signal == SIGXCPU || signal == SIGKILL ? std::string("did not finish within its time")
+                     : signal != 0 ? "crashed on it (signal " + std::to_string(signal) + ", " + strsignal(signal) + ")"
+                                   : "stopped with status " + std::to_string(WEXITSTATUS(status))) +
+                    " (it was read in a separate process first)");
+}
+
+}  // namespace
+
+VoxelVolume readVdb(const fs::path& file, float airValue) {
+  const std::string name = file.string();
+  requireFile(file, "a .vdb file");
+  checkVdbStructure(file, name);  // before OpenVDB trusts the file's counts and lengths
+  openvdb::initialize();
+
+  readInAChildFirst(name);
+  const openvdb::GridPtrVecPtr grids = readGrids(name);
 
   // The grid named "density" if it is a FloatGrid, else the first FloatGrid.
   openvdb::FloatGrid::Ptr grid;

@@ -10,6 +10,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <cstdio>
 #include <cstdlib>
@@ -728,6 +729,64 @@ TEST(VolumeIOVdb, RefusesAGridTooLargeFromItsStatistics) {
   }
   EXPECT_VOLUME_ERROR(readVdb(dir.path() / "huge.vdb", 0.f), dir.path() / "huge.vdb",
                       "grid 'density' spans [0, 0, 0] to [3975, 3975, 3975], more than the limit of 1073741824 voxels");
+}
+
+// A corrupt length or count in a .vdb's metadata is refused before OpenVDB
+// reads it: trusting a 4 GB name length, OpenVDB allocated it and looped over
+// garbage entries past the end of the file (11.7 GB resident, then killed;
+// found by mutating a small .vdb). Each case here is a real file written by
+// writeVdb with one field changed, and must fail fast with the field named.
+TEST(VolumeIOVdb, CorruptLengthsAndCountsAreRefusedBeforeOpenVdbReadsThem) {
+  ScratchDir dir;
+  writeVdb(sampleVolume(), dir.path() / "ok.vdb");
+  const std::string good = readBytes(dir.path() / "ok.vdb");
+  ASSERT_NO_THROW(readVdb(dir.path() / "ok.vdb", -1000.f));
+  // The offsets of the fields, found in the file as writeVdb lays it out.
+  const std::size_t gridName = good.find("density") - 4;       // the first descriptor's name length
+  const std::size_t metaName = good.find("file_bbox_max") - 4;  // the grid's first metadata name length
+  ASSERT_NE(good.find("density"), std::string::npos);
+  ASSERT_NE(good.find("file_bbox_max"), std::string::npos);
+  auto with = [&](const char* name, std::size_t at, std::uint32_t value) {
+    std::string bytes = good;
+    std::memcpy(bytes.data() + at, &value, sizeof value);
+    return writeBytes(dir.path() / name, bytes);
+  };
+  const auto longName = with("long_name.vdb", metaName, 0xff000004u);
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_VOLUME_ERROR(readVdb(longName, -1000.f), longName,
+                      "corrupt OpenVDB file: the metadata name has the length 4278190084 at byte");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(2));
+  const auto pastEnd = with("past_end.vdb", metaName, 100000);
+  EXPECT_VOLUME_ERROR(readVdb(pastEnd, -1000.f), pastEnd, "the metadata name at byte");
+  const auto manyEntries = with("many_entries.vdb", metaName - 4, 0x7fffffff);
+  EXPECT_VOLUME_ERROR(readVdb(manyEntries, -1000.f), manyEntries, "the grid metadata count is 2147483647 at byte");
+  const auto manyGrids = with("many_grids.vdb", gridName - 4, 0x10000000);
+  EXPECT_VOLUME_ERROR(readVdb(manyGrids, -1000.f), manyGrids, "the grid count is 268435456");
+  const auto cut = writeBytes(dir.path() / "cut.vdb", good.substr(0, metaName + 40));
+  EXPECT_VOLUME_ERROR(readVdb(cut, -1000.f), cut, "past the end of the file");
+}
+
+// OpenVDB 10 reads a chunk marked "stored uncompressed" into its buffer
+// before it checks the chunk's size (io/Compression.cc): this file (the 16 ×
+// 16 × 12 phantom written by `millsim phantom`, two bytes of a chunk size
+// changed by the mutation fuzzing that found it) made it write past a heap
+// buffer, and millsim crashed at exit after printing the error. readVdb reads
+// a file in a child process first, so this process never runs that read: the
+// child's error comes up (or, where the child itself stops on the overflow,
+// as under AddressSanitizer, that it stopped), and nothing here is overwritten.
+TEST(VolumeIOVdb, AChunkThatWouldOverflowOpenVdbsBufferIsRefusedWithoutReadingItHere) {
+  const fs::path file = fs::path(MILLSIM_SOURCE_DIR) / "tests/data/vdb/uncompressed-chunk-overflow.vdb";
+  ASSERT_TRUE(fs::exists(file));
+  const std::string message = errorOf([&] { (void)readVdb(file, -1000.f); });
+  std::cout << message << "\n";
+  EXPECT_EQ(message.rfind(file.string(), 0), 0u) << message;
+  EXPECT_TRUE(message.find("Expected to read a 168-byte uncompressed chunk") != std::string::npos ||
+              message.find("OpenVDB's reader") != std::string::npos)
+      << message;
+  // And a good file still reads, after its check in the child.
+  ScratchDir dir;
+  writeVdb(sampleVolume(), dir.path() / "ok.vdb");
+  expectSame(readVdb(dir.path() / "ok.vdb", -1000.f), sampleVolume());
 }
 
 // readVdb copies the file's tree tile by tile and leaf by leaf, never dense.
