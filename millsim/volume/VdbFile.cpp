@@ -7,14 +7,16 @@
 // border is air).
 #include <algorithm>
 #include <cerrno>
-#include <csignal>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
 #include <string>
 
+#include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -165,6 +167,7 @@ void readInAChildFirst(const std::string& name) {
     std::fclose(statm);
   }
   const rlim_t addressSpace = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + rlim_t(kMaxVoxels) * 8 + (rlim_t(1) << 30);
+  const int seconds = 60 + int(ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20));
   const pid_t pid = fork();
   if (pid < 0) {
     close(fds[0]), close(fds[1]);
@@ -175,7 +178,7 @@ void readInAChildFirst(const std::string& name) {
     // A minute of CPU time and a second per megabyte read is far above a real
     // file's need; a volume's grid may take up to 8 GiB (refuseOversizedGrid).
     rlimit cpu{};
-    cpu.rlim_cur = cpu.rlim_max = rlim_t(60 + (ec ? 0 : bytes >> 20));
+    cpu.rlim_cur = cpu.rlim_max = rlim_t(seconds);
     setrlimit(RLIMIT_CPU, &cpu);
     rlimit as{};
     as.rlim_cur = as.rlim_max = addressSpace;
@@ -197,14 +200,28 @@ void readInAChildFirst(const std::string& name) {
     _exit(code);
   }
   close(fds[1]);
+  // Wall-clock time too: a child that waits (on a lock another thread of this
+  // process held at the fork) uses no CPU time and would never be stopped.
   std::string message;
   char buffer[4096];
-  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) != 0;) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  bool late = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = left.count() > 0 ? poll(&p, 1, int(std::min<long long>(left.count(), 1 << 30))) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) {
+      late = ready == 0;
+      break;
+    }
+    const ssize_t n = read(fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) break;
+    if (n <= 0) break;
     message.append(buffer, std::size_t(n));
   }
   close(fds[0]);
+  if (late) kill(pid, SIGKILL);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
