@@ -228,10 +228,12 @@ void readInAChildFirst(const std::string& name) {
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && !message.empty()) throw VolumeError(message);
   const int signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-  throw VolumeError(name + ": corrupt OpenVDB file: OpenVDB's reader " +
-                    (signal == SIGXCPU || signal == SIGKILL ? std::string("did not finish within its time")
-                     : signal != 0 ? "crashed on it (signal " + std::to_string(signal) + ", " + strsignal(signal) + ")"
-                                   : "stopped with status " + std::to_string(WEXITSTATUS(status))) +
+  const std::string what =
+      late                ? "did not finish within " + std::to_string(seconds) + " s"
+      : signal == SIGXCPU ? "used more than " + std::to_string(seconds) + " s of CPU time"
+      : signal != 0       ? "crashed on it (signal " + std::to_string(signal) + ", " + strsignal(signal) + ")"
+                          : "stopped with status " + std::to_string(WEXITSTATUS(status));
+  throw VolumeError(name + ": corrupt OpenVDB file: OpenVDB's reader " + what +
                     " (it was read in a separate process first)");
 }
 
