@@ -180,9 +180,11 @@ void readInAChildFirst(const std::string& name) {
     rlimit cpu{};
     cpu.rlim_cur = cpu.rlim_max = rlim_t(seconds);
     setrlimit(RLIMIT_CPU, &cpu);
-    rlimit as{};
-    as.rlim_cur = as.rlim_max = addressSpace;
-    setrlimit(RLIMIT_AS, &as);
+    if (pages > 0) {  // without /proc the current size is unknown: no limit rather than a wrong one
+      rlimit as{};
+      as.rlim_cur = as.rlim_max = addressSpace;
+      setrlimit(RLIMIT_AS, &as);
+    }
     int code = 0;
     std::string message;
     try {
