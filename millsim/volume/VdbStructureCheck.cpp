@@ -21,7 +21,10 @@ namespace millsim {
 namespace {
 
 constexpr std::uint64_t kMagic = 0x56444220;
-constexpr std::uint32_t kFirstCheckedVersion = 222;  // per-grid compression flags
+// The versions whose layout is walked here: 222 added per-grid compression
+// flags; 224 is OpenVDB 10's. A later one may lay its header out otherwise,
+// so it is left to OpenVDB (and the child process that reads it first).
+constexpr std::uint32_t kFirstCheckedVersion = 222, kLastCheckedVersion = 224;
 // Names and type names are short; a value (a string, a bounding box) small. A
 // length above this is corrupt even where the file is long enough to hold it.
 constexpr std::uint32_t kMaxString = 1u << 20;
@@ -107,7 +110,7 @@ void checkVdbStructure(const std::filesystem::path& file, const std::string& nam
   const std::uint32_t version = r.read<std::uint32_t>("file version");
   r.read<std::uint32_t>("library major version");
   r.read<std::uint32_t>("library minor version");
-  if (version < kFirstCheckedVersion) return;
+  if (version < kFirstCheckedVersion || version > kLastCheckedVersion) return;
   const bool offsets = r.read<char>("grid offsets flag") != 0;
   r.skip(36, "file UUID");
   metaMap(r, "file metadata count");

@@ -17,7 +17,7 @@ namespace millsim {
 
 // Throws VolumeError naming the file, the offending field, its offset and
 // what was expected. A file of a version whose layout is not checked here
-// (before OpenVDB file version 222) is checked up to its header only.
+// (OpenVDB file versions other than 222-224) is checked up to its header only.
 void checkVdbStructure(const std::filesystem::path& file, const std::string& name);
 
 }  // namespace millsim
