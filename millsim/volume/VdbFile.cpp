@@ -35,6 +35,9 @@ namespace millsim {
 namespace {
 
 const char* const kDimsMeta = "millsim_dims";
+// What one grid may take in memory: a dense float grid of kMaxVoxels is 4 GiB;
+// twice that leaves room for the tree.
+constexpr std::int64_t kMaxGridBytes = std::int64_t(kMaxVoxels) * 8;
 
 std::string gridList(const openvdb::GridPtrVec& grids) {
   std::string s;
@@ -61,12 +64,10 @@ void refuseOversizedGrid(const std::string& name, const openvdb::GridBase& grid)
       throw VolumeError(m.str());
     }
   }
-  // A dense float grid of kMaxVoxels is 4 GiB; twice that leaves room for the tree.
-  const std::int64_t limit = std::int64_t(kMaxVoxels) * 8;
   if (const auto mem = grid.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
-      mem && mem->value() > limit)
+      mem && mem->value() > kMaxGridBytes)
     throw VolumeError(name + ": grid '" + grid.getName() + "' needs " + std::to_string(mem->value()) +
-                      " bytes in memory, more than the " + std::to_string(limit) + " a volume may take");
+                      " bytes in memory, more than the " + std::to_string(kMaxGridBytes) + " a volume may take");
 }
 
 // The volume's grid from the file's, clipped to the volume's box: active
@@ -81,6 +82,9 @@ openvdb::FloatGrid::Ptr copyClipped(const openvdb::FloatGrid& file, glm::ivec3 d
   using Leaf = Tree::LeafNodeType;
   const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(dims.x - 1, dims.y - 1, dims.z - 1));
   const float background = file.background();
+  if (!std::isfinite(background))
+    throw VolumeError(name + ": grid '" + file.getName() + "' has the background value " + std::to_string(background) +
+                      "; a density must be a finite number");
   auto out = openvdb::FloatGrid::create(air);
   out->setName("density");
   Tree& tree = out->tree();
@@ -166,7 +170,7 @@ void readInAChildFirst(const std::string& name) {
     if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
     std::fclose(statm);
   }
-  const rlim_t addressSpace = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + rlim_t(kMaxVoxels) * 8 + (rlim_t(1) << 30);
+  const rlim_t addressSpace = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + rlim_t(kMaxGridBytes) + (rlim_t(1) << 30);
   const int seconds = 60 + int(ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20));
   const pid_t pid = fork();
   if (pid < 0) {
@@ -176,7 +180,7 @@ void readInAChildFirst(const std::string& name) {
   if (pid == 0) {  // the child: read, report, and leave without running anything of the parent's
     close(fds[0]);
     // A minute of CPU time and a second per megabyte read is far above a real
-    // file's need; a volume's grid may take up to 8 GiB (refuseOversizedGrid).
+    // file's need; a grid may take up to kMaxGridBytes (refuseOversizedGrid).
     rlimit cpu{};
     cpu.rlim_cur = cpu.rlim_max = rlim_t(seconds);
     setrlimit(RLIMIT_CPU, &cpu);
@@ -290,9 +294,6 @@ VoxelVolume readVdb(const fs::path& file, float airValue) {
   const glm::dvec3 spacing = spacingMm / 1000.0;
   checkVolumeShape(name, dims, spacing);
 
-  if (!std::isfinite(grid->background()))
-    throw VolumeError(name + ": grid '" + grid->getName() + "' has the background value " +
-                      std::to_string(grid->background()) + "; a density must be a finite number");
   return VoxelVolume(copyClipped(*grid, dims, airValue, name), dims, spacing, airValue);
 }
 
