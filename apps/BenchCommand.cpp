@@ -147,6 +147,38 @@ struct PhysicalArgs {
 // with today's own-law figure (bench accuracy's "all" row) beside it; with
 // --sweep-voxel, also over each resolution field (the run time against
 // physical error that docs/results.md plots).
+// The force's convergence order per scene: which scenes hold a renderer's
+// pooled order down (a scene whose error the voxels do not set stays flat).
+// "exact" where every h measured under 1e-6 (the half-space for #1 and #2).
+std::string sceneForceOrders(const std::vector<PhysicalRow>& rows) {
+  std::vector<std::string> scenes, renderers;
+  std::map<std::pair<std::string, std::string>, std::pair<std::vector<double>, std::vector<double>>> series;
+  for (const PhysicalRow& r : rows) {
+    if (r.scene == "all") continue;
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    if (std::find(renderers.begin(), renderers.end(), r.renderer) == renderers.end()) renderers.push_back(r.renderer);
+    auto& [hs, errors] = series[{r.renderer, r.scene}];
+    hs.push_back(r.h), errors.push_back(r.forceRms);
+  }
+  if (series.empty() || series.begin()->second.first.size() < 2) return "";
+  std::ostringstream md;
+  md << "\nForce convergence order per scene (error ∝ h^p):\n\n| renderer |";
+  for (const auto& s : scenes) md << " " << s << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < scenes.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& type : renderers) {
+    md << "| " << type << " |";
+    for (const auto& scene : scenes) {
+      const auto& [hs, errors] = series[{type, scene}];
+      const bool exact = std::all_of(errors.begin(), errors.end(), [](double e) { return e < 1e-6; });
+      md << " " << (exact ? std::string("exact") : fmt(convergenceOrder(hs, errors), 2)) << " |";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
 int runPhysical(const PhysicalArgs& a) {
   PhysicalConfig cfg;
   AccuracyConfig own;
@@ -243,6 +275,7 @@ int runPhysical(const PhysicalArgs& a) {
   md << "\nConvergence order p in h (error ∝ h^p; drawn pose in mm):\n\n| renderer | force | direction | torque | "
         "shaft arm | drawn |\n|---|---|---|---|---|---|\n"
      << orders.str();
+  md << sceneForceOrders(rows);
   if (!sweepRows.empty()) {
     md << "\nResolution sweep, h = " << fmt(a.sweepVoxelMm) << " mm (all scenes):\n\n| renderer | resolution | force RMS (%) | "
           "direction RMS (°) | torque RMS | p50 (µs) | p99 (µs) |\n|---|---|---|---|---|---|---|\n";
