@@ -4,6 +4,7 @@
   window_check.py view-and-swap MILLSIM SCENE OUTDIR
   window_check.py swap MILLSIM SCENE OUTDIR
   window_check.py mouse MILLSIM SCENE OUTDIR
+  window_check.py real-ct MILLSIM SCENE OUTDIR
   window_check.py stall MILLSIM SCENE OUTDIR
   window_check.py key-sensor MILLSIM SCENE OUTDIR
 
@@ -184,6 +185,29 @@ def mouse(millsim, scene, out):
     check(removed > 0.0, f"milling with the button held removes material ({removed:.3f} mm³)")
 
 
+def real_ct(millsim, scene, out):
+    # x3d/lessons/real-ct.x3d as its comments tell a person to mill: the cursor on an upper front
+    # tooth, Ctrl+wheel to take the burr in, Space held to mill, a small sweep across the tooth.
+    proc, window, log = start(millsim, scene, out, "--duration", "9")
+    xdo("mousemove", "--window", window, 320, 253)
+    time.sleep(0.3)
+    for _ in range(12):
+        xdo("keydown", "ctrl", "click", "5", "keyup", "ctrl")
+        time.sleep(0.05)
+    time.sleep(0.3)
+    xdo("keydown", "space")
+    for i in range(40):
+        xdo("mousemove", "--window", window, 314 + (i % 4) * 4, 253)
+        time.sleep(0.05)
+    xdo("keyup", "space")
+    finish(proc)
+    rows = read_log(log)
+    touching = sum(int(r["contacts"]) > 0 for r in rows)
+    check(touching > 100, f"the burr, wheeled in, meets the scan's teeth ({touching} frames in contact)")
+    removed = float(rows[-1]["removed_mm3"])
+    check(removed > 0.05, f"milling with Space held cuts the tooth ({removed:.3f} mm³; about 0.4 by hand)")
+
+
 def stall(millsim, scene, out):
     # The window thread sleeps 400 ms per frame; the haptic thread must not care.
     proc, window, log = start(millsim, scene, out, "--duration", "4", env={"MILLSIM_TEST_STALL_WINDOW_MS": "400"})
@@ -220,13 +244,13 @@ def key_sensor(millsim, scene, out):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "stall", "key-sensor"):
+    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "real-ct", "stall", "key-sensor"):
         sys.exit(__doc__)
     mode, millsim, scene, out = sys.argv[1:]
     os.makedirs(out, exist_ok=True)
     for name in os.listdir(out):
         os.remove(os.path.join(out, name))
-    {"view-and-swap": view_and_swap, "swap": swap, "mouse": mouse, "stall": stall,
+    {"view-and-swap": view_and_swap, "swap": swap, "mouse": mouse, "real-ct": real_ct, "stall": stall,
      "key-sensor": key_sensor}[mode](millsim, scene, out)
     if failures:
         print(f"{len(failures)} check(s) failed")
