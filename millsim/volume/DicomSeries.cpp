@@ -45,6 +45,7 @@
 
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/MedicalModule.h"
+#include "millsim/volume/VolumeBuilder.h"
 #include "millsim/volume/VolumeIO.h"
 
 namespace fs = std::filesystem;
@@ -599,9 +600,14 @@ VoxelVolume medical::readDicom(const fs::path& fileOrFolder, float airValue) {
   checkVolumeShape(name, dims, spacing);  // before the voxels are allocated
 
   const std::size_t perSlice = std::size_t(first.rows) * std::size_t(first.cols);
-  std::vector<float> values(perSlice * slices.size());
-  for (std::size_t k = 0; k < slices.size(); ++k) readSlicePixels(slices[k], values.data() + k * perSlice);
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
+  // A slice at a time into the volume being built: no dense float copy of the series.
+  VolumeBuilder volume(dims, spacing, airValue, name);
+  std::vector<float> slice(perSlice);
+  for (const Slice& s : slices) {
+    readSlicePixels(s, slice.data());
+    volume.append(slice.data(), perSlice);
+  }
+  return volume.finish();
 }
 
 }  // namespace millsim

@@ -31,6 +31,7 @@
 
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/MedicalModule.h"
+#include "millsim/volume/VolumeBuilder.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VtkReading.h"
 
@@ -40,7 +41,7 @@ namespace millsim {
 
 namespace {
 
-using vtkio::toFloats;
+using vtkio::appendFloats;
 using vtkio::VtkMessages;
 
 struct MetaType {
@@ -255,13 +256,13 @@ VoxelVolume medical::readMetaImage(const fs::path& file, float airValue) {
   if (std::size_t(scalars->GetNumberOfTuples()) != n)
     throw VolumeError(name + ": VTK read " + std::to_string(scalars->GetNumberOfTuples()) + " values, expected " +
                       std::to_string(n));
-  std::vector<float> values;
+  VolumeBuilder volume(dims, spacing, airValue, name);
   try {
-    values = toFloats(scalars);
+    appendFloats(scalars, volume);
   } catch (const std::runtime_error& e) {
     throw VolumeError(name + ": " + e.what());
   }
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
+  return volume.finish();
 }
 
 }  // namespace millsim

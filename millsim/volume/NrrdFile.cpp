@@ -31,6 +31,7 @@
 #include <zlib.h>
 
 #include "millsim/volume/ReaderLimits.h"
+#include "millsim/volume/VolumeBuilder.h"
 #include "millsim/volume/VolumeIO.h"
 
 namespace fs = std::filesystem;
@@ -90,35 +91,37 @@ bool parseInteger(const std::string& s, long long& out) {
   return errno == 0 && end == s.c_str() + s.size();
 }
 
-// Converts little- or big-endian values to float as bytes arrive, in any chunking.
+// Converts little- or big-endian values to float as bytes arrive, in any
+// chunking, into the volume being built (a slab at a time: no dense copy).
 class Converter {
 public:
-  Converter(Scalar type, bool swap, float* out, std::size_t count)
-      : type_(type), swap_(swap), bytes_(scalarBytes(type)), out_(out), count_(count) {}
+  Converter(Scalar type, bool swap, VolumeBuilder& out)
+      : type_(type), swap_(swap), bytes_(scalarBytes(type)), out_(out) {}
 
-  // Returns the number of bytes consumed (stops when all values are filled).
+  // Returns the number of bytes consumed (stops when every voxel has its value).
   std::size_t feed(const unsigned char* p, std::size_t len) {
     std::size_t used = 0;
-    while (used < len && done_ < count_) {
+    while (used < len && out_.room() > 0) {
       if (carryLen_ > 0 || len - used < bytes_) {
         const std::size_t take = std::min(bytes_ - carryLen_, len - used);
         std::memcpy(carry_.data() + carryLen_, p + used, take);
         carryLen_ += take;
         used += take;
         if (carryLen_ == bytes_) {
-          out_[done_++] = one(carry_.data());
+          *out_.next() = one(carry_.data());
+          out_.advance(1);
           carryLen_ = 0;
         }
         continue;
       }
-      const std::size_t whole = std::min((len - used) / bytes_, count_ - done_);
-      for (std::size_t i = 0; i < whole; ++i) out_[done_ + i] = one(p + used + i * bytes_);
-      done_ += whole;
+      const std::size_t whole = std::min((len - used) / bytes_, out_.room());
+      float* to = out_.next();
+      for (std::size_t i = 0; i < whole; ++i) to[i] = one(p + used + i * bytes_);
+      out_.advance(whole);
       used += whole * bytes_;
     }
     return used;
   }
-  std::size_t valuesDone() const { return done_; }
 
 private:
   template <typename T>
@@ -149,9 +152,7 @@ private:
   Scalar type_;
   bool swap_;
   std::size_t bytes_;
-  float* out_;
-  std::size_t count_;
-  std::size_t done_ = 0;
+  VolumeBuilder& out_;
   std::array<unsigned char, 8> carry_{};
   std::size_t carryLen_ = 0;
 };
@@ -380,8 +381,8 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
   std::ifstream data(dataPath, std::ios::binary);
   if (!data) throw VolumeError(name + ": cannot open " + where);
   data.seekg(std::streamoff(offset));
-  std::vector<float> values(n);
-  Converter conv(*type, swap, values.data(), n);
+  VolumeBuilder volume(dims, spacing, airValue, name);
+  Converter conv(*type, swap, volume);
   std::vector<unsigned char> chunk(1 << 18);
 
   if (enc == "raw") {
@@ -449,7 +450,10 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
         while (e < end && !std::isspace(static_cast<unsigned char>(*e)) && e - p < 20) ++e;
         throw VolumeError(name + ": bad number '" + std::string(p, e) + "' in the ascii data");
       }
-      if (count < n) values[count] = static_cast<float>(v);
+      if (count < n) {
+        *volume.next() = static_cast<float>(v);
+        volume.advance(1);
+      }
       ++count;
       p = q;
     }
@@ -460,7 +464,7 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
       throw VolumeError(name + ": header/size mismatch: the header promises " + std::to_string(n) + " values, " +
                         where + " has " + std::to_string(count));
   }
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
+  return volume.finish();
 }
 
 void writeNrrd(const VoxelVolume& volume, const fs::path& file, bool gzip) {

@@ -2,16 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <sstream>
-#include <openvdb/tools/Dense.h>
-#include <openvdb/tools/Prune.h>
+
+#include "millsim/volume/VolumeBuilder.h"
 
 namespace millsim {
-
-namespace {
-std::once_flag vdbInitialized;
-}
 
 VoxelVolume::~VoxelVolume() = default;
 VoxelVolume::VoxelVolume(const VoxelVolume&) = default;
@@ -68,33 +63,9 @@ void checkVolumeShape(const std::string& what, glm::ivec3 dims, glm::dvec3 voxel
 
 VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dvec3 voxelSize, float airValue,
                                    const std::string& source) {
-  checkVolumeShape(source, dims, voxelSize);
-  const std::size_t n = std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
-  bool allFinite = true;
-  for (std::size_t i = 0; i < n; ++i) allFinite &= std::isfinite(values[i]);  // no early exit: it vectorises
-  if (!allFinite) {
-    const std::size_t at = std::size_t(std::find_if_not(values, values + n, [](float v) { return std::isfinite(v); }) - values);
-    const std::size_t row = at / std::size_t(dims.x);
-    refuseNonFiniteDensity(source, values[at], int(at % std::size_t(dims.x)), int(row % std::size_t(dims.y)),
-                           int(row / std::size_t(dims.y)));
-  }
-  std::call_once(vdbInitialized, [] { openvdb::initialize(); });
-  auto grid = Grid::create(airValue);
-  const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(dims.x - 1, dims.y - 1, dims.z - 1));
-  // LayoutXYZ: x is the fastest-changing index, as in the files we read.
-  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, const_cast<float*>(values));
-  // Values within this tolerance of air become background; copyFromDense runs in parallel.
-  openvdb::tools::copyFromDense(dense, *grid, /*tolerance=*/0.f);
-  grid->setName("density");
-  // Values at or below air are air: they become inactive background, and
-  // blocks of nothing but air collapse to the sparse background.
-  for (auto it = grid->beginValueOn(); it; ++it)
-    if (*it <= airValue) {
-      it.setValue(airValue);
-      it.setValueOff();
-    }
-  openvdb::tools::pruneInactive(grid->tree());
-  return VoxelVolume(std::move(grid), dims, voxelSize, airValue);
+  VolumeBuilder builder(dims, voxelSize, airValue, source);
+  builder.append(values, builder.valuesTotal());
+  return builder.finish();
 }
 
 std::uint64_t VoxelVolume::contentHash() const {

@@ -26,6 +26,7 @@
 
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/MedicalModule.h"
+#include "millsim/volume/VolumeBuilder.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VtkReading.h"
 
@@ -35,7 +36,7 @@ namespace millsim {
 
 namespace {
 
-using vtkio::toFloats;
+using vtkio::appendFloats;
 using vtkio::VtkMessages;
 
 // VTK's XML parser keeps every element and attribute in memory, so a file
@@ -194,13 +195,13 @@ VoxelVolume medical::readVti(const fs::path& file, float airValue) {
     throw VolumeError(name + ": header/size mismatch: the extent promises " + std::to_string(n) + " values, array '" +
                       std::string(scalars->GetName() ? scalars->GetName() : "") + "' has " +
                       std::to_string(scalars->GetNumberOfTuples()));
-  std::vector<float> values;
+  VolumeBuilder volume(dims, spacing, airValue, name);
   try {
-    values = toFloats(scalars);
+    appendFloats(scalars, volume);
   } catch (const std::runtime_error& e) {
     throw VolumeError(name + ": " + e.what());
   }
-  return VoxelVolume::fromDense(values.data(), dims, spacing, airValue, name);
+  return volume.finish();
 }
 
 }  // namespace millsim

@@ -1,5 +1,6 @@
 #include "millsim/volume/VtkReading.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <vtkAlgorithm.h>
@@ -9,6 +10,7 @@
 #include <vtkType.h>
 
 #include "millsim/volume/ReaderLimits.h"
+#include "millsim/volume/VolumeBuilder.h"
 
 namespace millsim::vtkio {
 
@@ -30,17 +32,21 @@ void VtkMessages::watch(vtkAlgorithm* a) {
   a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, command);
 }
 
-std::vector<float> toFloats(vtkDataArray* a) {
-  const vtkIdType n = a->GetNumberOfTuples() * a->GetNumberOfComponents();
-  std::vector<float> v(static_cast<std::size_t>(n));
+void appendFloats(vtkDataArray* a, VolumeBuilder& out) {
+  const std::size_t n = std::size_t(a->GetNumberOfTuples()) * std::size_t(a->GetNumberOfComponents());
   switch (a->GetDataType()) {
     vtkTemplateMacro({
       const auto* p = static_cast<const VTK_TT*>(a->GetVoidPointer(0));
-      for (vtkIdType i = 0; i < n; ++i) v[std::size_t(i)] = static_cast<float>(p[i]);
+      for (std::size_t i = 0; i < n && out.room() > 0;) {
+        const std::size_t k = std::min(n - i, out.room());
+        float* to = out.next();
+        for (std::size_t j = 0; j < k; ++j) to[j] = static_cast<float>(p[i + j]);
+        out.advance(k);
+        i += k;
+      }
     });
     default: throw std::runtime_error(std::string("unsupported scalar type ") + a->GetDataTypeAsString());
   }
-  return v;
 }
 
 }  // namespace millsim::vtkio

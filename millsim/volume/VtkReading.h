@@ -3,7 +3,6 @@
 // printed errors into exception text, and converting its scalar arrays.
 // Internal to millsim/volume (listed in cmake/private-headers.txt): includes VTK headers.
 #include <string>
-#include <vector>
 
 #include <vtkCallbackCommand.h>
 #include <vtkNew.h>
@@ -11,6 +10,10 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkObject;
+
+namespace millsim {
+class VolumeBuilder;
+}
 
 namespace millsim::vtkio {
 
@@ -28,7 +31,9 @@ private:
   static void collect(vtkObject*, unsigned long, void* self, void* call);
 };
 
-// Every value of a one-component VTK array as float; throws on unsupported types.
-std::vector<float> toFloats(vtkDataArray* a);
+// Every value of a one-component VTK array, as float, into the volume being
+// built (a slab at a time, no dense float copy); throws std::runtime_error on
+// unsupported types.
+void appendFloats(vtkDataArray* a, VolumeBuilder& out);
 
 }  // namespace millsim::vtkio

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <numbers>
 #include <tuple>
 
@@ -41,12 +42,21 @@ constexpr int kSize = 512;
 // Part-way through the shipped lesson: milled (1.25–4 s) and leaning (4–6 s).
 constexpr double kReplayUntil = 6.0;
 
+// Shipped scenes that are not a tooth milled from above, with the failure
+// each would give here, and the test that checks its drawing instead.
+const std::map<std::string, std::string> kNotATooth = {
+    {"lessons/real-ct.x3d",
+     "\"no tooth below the volume's top centre\": a head CT stood upright by a Transform, its local top is its face, "
+     "and mill-and-lean.csv's hole (x = z = 0, 7-9 mm up) lies in its empty cranium; "
+     "RealCtLesson.DrawsTheTeethAndTheBoneWhereTheVoxelsAre checks it"}};
+
 std::vector<std::string> shippedScenes() {
   std::vector<std::string> out;
   const fs::path root = fs::path(MILLSIM_SOURCE_DIR) / "x3d";
   for (const auto& e : fs::recursive_directory_iterator(root))
     if (e.path().extension() == ".x3d") out.push_back(fs::relative(e.path(), root).generic_string());
   std::sort(out.begin(), out.end());
+  std::erase_if(out, [](const std::string& scene) { return kNotATooth.count(scene) > 0; });
   return out;
 }
 
@@ -222,6 +232,72 @@ TEST_P(SceneRender, DrawsToothToolHoleAndMatchesReference) {
   }
   EXPECT_TRUE(d.matches()) << d.differing << " of " << d.total << " pixels differ by more than " << kChannelTolerance
                            << " (allowed fraction " << kMaxDifferingFraction << "), largest difference " << d.maxChannel;
+}
+
+// The real-CT lesson from its own viewpoint: the front tooth nearest the
+// camera and the nearest bone are drawn at the depth the voxels put their
+// surface, and the picture matches its reference.
+TEST(RealCtLesson, DrawsTheTeethAndTheBoneWhereTheVoxelsAre) {
+  const std::string rel = "lessons/real-ct.x3d";
+  LoadResult r = loadSceneFile(fs::path(MILLSIM_SOURCE_DIR) / "x3d" / rel, builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const SceneView sv = readSceneView(*r.scene);
+  ASSERT_EQ(sv.volumes.size(), 1u);
+  const DrawVolume& head = sv.volumes.front();
+  auto renderer = createSceneRenderer(*r.scene, sized(kSize));
+  renderer->render(std::nullopt);
+  const Image img = renderer->readPixels();
+  const std::vector<float> depth = renderer->readDepth();
+  const Camera cam = renderer->camera();
+  const fs::path pictures = fs::path(MILLSIM_BINARY_DIR) / "tests" / "scene-pictures";
+  fs::create_directories(pictures);
+  writePng(img, pictures / "lessons-real-ct.scene.png");
+
+  // The voxel of a tissue (CT numbers in [lo, hi)) nearest the camera, within the picture's middle.
+  const VoxelVolume& v = *head.voxels;
+  auto nearest = [&](float lo, float hi) {
+    std::optional<glm::dvec3> best;
+    for (int k = 0; k < v.dims().z; ++k)
+      for (int j = 0; j < v.dims().y; ++j)
+        for (int i = 0; i < v.dims().x; ++i) {
+          const float d = v.valueAt(i, j, k);
+          if (d < lo || d >= hi) continue;
+          const glm::dvec3 w(head.localToWorld * glm::dvec4(v.indexToLocal(glm::dvec3(i, j, k)), 1.0));
+          const glm::dvec3 p = cam.project(w);
+          if (p.x < kSize / 4 || p.x > 3 * kSize / 4 || p.y < kSize / 4 || p.y > 3 * kSize / 4) continue;
+          if (!best || viewDistanceOf(cam, w) < viewDistanceOf(cam, *best)) best = w;
+        }
+    return best;
+  };
+  struct Probe {
+    const char* tissue;
+    float lo, hi;
+  };
+  for (const Probe& probe : {Probe{"teeth", 2600.f, 4000.f}, Probe{"bone", 1500.f, 2600.f}}) {
+    const auto voxel = nearest(probe.lo, probe.hi);
+    ASSERT_TRUE(voxel) << "no " << probe.tissue << " voxel in the middle of the picture";
+    const glm::dvec3 px = cam.project(*voxel);
+    const int x = int(px.x), y = int(px.y);
+    const auto [eye, dir] = pixelRay(cam, x, y);
+    const auto hit = firstSurface(head, eye, dir, 1.0);
+    ASSERT_TRUE(hit) << "the ray through the nearest " << probe.tissue << " voxel meets no surface";
+    // Voxels of 0.4 x 0.4 x 0.19 mm: the mesh and the marched iso-surface agree to a third of the largest.
+    EXPECT_NEAR(viewDistance(cam, depthAt(depth, x, y)), viewDistanceOf(cam, *hit), 0.15e-3)
+        << probe.tissue << " surface depth at pixel (" << x << ", " << y << ")";
+    EXPECT_FALSE(isBackground(img.at(x, y), sv.background)) << probe.tissue << " pixel (" << x << ", " << y << ")";
+  }
+  // The colours are the reference image's to check: at 3.2 mm (scaled 0.4 mm) a tooth's surface
+  // voxels are partial volumes in the bone's range, so its white shows only where its core is near.
+
+  const fs::path reference = fs::path(MILLSIM_SOURCE_DIR) / "tests/data/images" / referenceName(rel);
+  if (updatingReferences()) {
+    writePng(img, reference);
+    std::cout << "wrote reference " << reference << "\n";
+    return;
+  }
+  ASSERT_TRUE(fs::exists(reference)) << reference << " is missing; see the top of " << __FILE__;
+  const ImageDifference d = compareImages(img, readPng(reference), nullptr);
+  EXPECT_TRUE(d.matches()) << d.differing << " of " << d.total << " pixels differ by more than " << kChannelTolerance;
 }
 
 // An empty list would instantiate no SceneRender test at all and ctest would

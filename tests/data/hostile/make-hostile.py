@@ -162,3 +162,26 @@ os.mkfifo(replace(os.path.join(out, "fifo.csv")))
 device_scene("trajectory-fifo", "fifo.csv")
 os.symlink("/dev/zero", replace(os.path.join(out, "zero.csv")))
 device_scene("trajectory-zero", "zero.csv")
+
+
+# Not hostile, large: a 512³ CT-sized volume, all air but a 40³ cube. Read a
+# slab at a time it fits a 400 MB address space; a dense float copy alone
+# would take 512 MB (the readers made one until Dec 2026).
+size, lo, hi = 512, 236, 276
+row_air, row_cube = bytes(size), bytes(lo) + bytes([200]) * (hi - lo) + bytes(size - hi)
+slice_air = row_air * size
+slice_cube = row_air * lo + row_cube * (hi - lo) + row_air * (size - hi)
+with open(replace(os.path.join(out, "sparse.nrrd")), "wb") as f:
+    f.write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 512 512 512\nspacings: 0.1 0.1 0.1\nencoding: gzip\n\n")
+    packer = zlib.compressobj(1, zlib.DEFLATED, 16 + 15)
+    for k in range(size):
+        f.write(packer.compress(slice_cube if lo <= k < hi else slice_air))
+    f.write(packer.flush())
+with open(os.path.join(out, "sparse-large.x3d"), "w") as f:
+    f.write("""<?xml version="1.0" encoding="UTF-8"?>
+<X3D profile="Immersive" version="3.3">
+  <Scene>
+    <VolumeObject url='"sparse.nrrd"' airValue="0" isoValue="100"/>
+  </Scene>
+</X3D>
+""")
