@@ -1,14 +1,17 @@
-// Volume costs on the tooth phantom: building it, sampling densities, one
-// milling stamp, the point shell and its incremental update.
+// Volume costs on the tooth phantom: building it, reading it back from a
+// file, sampling densities, one milling stamp, the point shell and its
+// incremental update.
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <filesystem>
 #include <random>
 
 #include "millsim/volume/BlockChannel.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/ToothPhantom.h"
+#include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VolumeSampler.h"
 
 using namespace millsim;
@@ -24,6 +27,19 @@ void BM_PhantomBuild(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(makeToothPhantom(ToothPhantomOptions{}).activeVoxels());
 }
 BENCHMARK(BM_PhantomBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// Reading the phantom back from a NRRD (arg 0: raw, 1: gzip), streamed into
+// the sparse grid a slab at a time (VolumeBuilder): voxels of the box per second.
+void BM_ReadNrrd(benchmark::State& state) {
+  const bool gzip = state.range(0) != 0;
+  const auto file = std::filesystem::temp_directory_path() / (gzip ? "millsim-bench-gzip.nrrd" : "millsim-bench-raw.nrrd");
+  writeNrrd(phantom(), file, gzip);
+  for (auto _ : state) benchmark::DoNotOptimize(readNrrd(file, phantom().airValue()).activeVoxels());
+  const glm::ivec3 d = phantom().dims();
+  state.SetItemsProcessed(state.iterations() * std::int64_t(d.x) * d.y * d.z);
+  std::filesystem::remove(file);
+}
+BENCHMARK(BM_ReadNrrd)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // Times `sample(sampler, p)` over the points, as samples per second. Pass
 // lambdas (kTrilinear, kEightLookups): a function pointer would not be inlined.
