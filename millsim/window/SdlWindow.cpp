@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -327,6 +328,10 @@ private:
         return;
       }
       if (!(mod & KMOD_ALT) && !middleDrag_) {
+        // SDL's first report is where the cursor was when the window appeared
+        // under it, not a move: followed, it took the burr from where the
+        // scene starts it (MouseDevice.position) to wherever the cursor was.
+        if (std::exchange(awaitingFirstMove_, false)) return;
         pointerTool_.follow(camera, m.x * sx, m.y * sy);
         return;
       }
@@ -379,6 +384,7 @@ private:
   std::unique_ptr<SceneDrawer> drawer_;
   ExamineNavigator examine_;
   PointerTool pointerTool_;
+  bool awaitingFirstMove_ = true;
   std::vector<WindowCommand> commands_;
   std::vector<ToolView> lastTools_;
   HudState lastHud_;

@@ -15,6 +15,7 @@ would, and checks what the window showed (captured with ImageMagick's
 """
 import csv
 import os
+import re
 import subprocess
 import sys
 import time
@@ -200,8 +201,19 @@ def real_ct(millsim, scene, out):
         xdo("mousemove", "--window", window, 314 + (i % 4) * 4, 253)
         time.sleep(0.05)
     xdo("keyup", "space")
-    finish(proc)
+    output = finish(proc)
     rows = read_log(log)
+    # Until the cursor is first moved, the burr stays where the MouseDevice starts it (the window puts
+    # the cursor on it): SDL's report of where the cursor was when the window appeared moved it.
+    opened = re.search(r"first frame ([0-9.]+) ms after start", output)
+    opened_ms = float(opened.group(1)) if opened else 0.0
+    still = 0
+    for r in rows:
+        if abs(float(r["x"])) > 1e-6 or abs(float(r["y"]) + 0.0026) > 1e-6 or abs(float(r["z"]) - 0.008) > 1e-6:
+            break
+        still += 1
+    check(still > opened_ms + 400, f"the burr stays at the scene's start until the mouse moves ({still} frames there; "
+          f"the window's first frame at {opened_ms:.0f} ms)")
     touching = sum(int(r["contacts"]) > 0 for r in rows)
     check(touching > 100, f"the burr, wheeled in, meets the scan's teeth ({touching} frames in contact)")
     removed = float(rows[-1]["removed_mm3"])
