@@ -37,7 +37,8 @@ public:
   const NodeType& nodeType() const override { return type(); }
 
   SFVec3f position{this, "position", Access::InitializeOnly, glm::vec3(0.f),
-                   "Where the burr starts (m, world); (0, 0, 0): just above the middle of the scene.",
+                   "Where the burr starts (m, world), until the mouse first moves; (0, 0, 0): just above the "
+                   "middle of the scene.",
                    Range::closed(-10, 10).in(quantity::length)};
   SFRotation orientation{this, "orientation", Access::InitializeOnly, Rotation{},
                          "How the tool starts (default: shaft up, +Y)."};
