@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "millsim/volume/VolumeBuilder.h"
 
@@ -66,6 +67,31 @@ VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dv
   VolumeBuilder builder(dims, voxelSize, airValue, source);
   builder.append(values, builder.valuesTotal());
   return builder.finish();
+}
+
+VoxelVolume::DensitySummary VoxelVolume::densitySummary(float iso) const {
+  DensitySummary s;
+  for (auto it = grid_->cbeginValueOn(); it; ++it) {
+    const float v = *it;
+    s.min = s.voxels == 0 ? v : std::min(s.min, v), s.max = s.voxels == 0 ? v : std::max(s.max, v);
+    ++s.voxels, s.aboveIso += v > iso;
+  }
+  if (s.voxels == 0) return s;
+  // Percentiles from a histogram of the range: two passes, no copy of the voxels.
+  constexpr int kBins = 4096;
+  std::vector<std::uint64_t> bins(kBins, 0);
+  const double width = (double(s.max) - double(s.min)) / kBins;
+  auto bin = [&](float v) { return width > 0.0 ? std::min(kBins - 1, int((double(v) - s.min) / width)) : 0; };
+  for (auto it = grid_->cbeginValueOn(); it; ++it) ++bins[std::size_t(bin(*it))];
+  auto percentile = [&](double fraction) {
+    const double want = fraction * double(s.voxels);
+    std::uint64_t seen = 0;
+    for (int b = 0; b < kBins; ++b)
+      if (double(seen += bins[std::size_t(b)]) >= want) return float(s.min + (b + 0.5) * width);
+    return s.max;
+  };
+  s.p10 = percentile(0.1), s.p50 = percentile(0.5), s.p90 = percentile(0.9);
+  return s;
 }
 
 std::uint64_t VoxelVolume::contentHash() const {

@@ -61,6 +61,16 @@ public:
   // Deterministic digest of dimensions, spacing and every voxel value (FNV-1a over a dense walk).
   std::uint64_t contentHash() const;
 
+  // The stored densities (those above air): how many, their range, their
+  // 10th, 50th and 90th percentiles (to 1/4096 of the range), and how many
+  // lie above `iso`. What a scene author reads to choose isoValue and Tissue
+  // ranges (`millsim check`).
+  struct DensitySummary {
+    std::uint64_t voxels = 0, aboveIso = 0;
+    float min = 0.f, max = 0.f, p10 = 0.f, p50 = 0.f, p90 = 0.f;
+  };
+  DensitySummary densitySummary(float iso) const;
+
 private:
   Grid::Ptr grid_;
   glm::ivec3 dims_;

@@ -678,3 +678,25 @@ TEST(MaterialBlocks, SaysNoOnlyWhereNothingWithinTheRadiusIsMaterial) {
   EXPECT_GT(no, 60) << "the cull should say no for much of the space round the tooth";
   EXPECT_TRUE(scene.mayHaveMaterialNear(glm::dvec3(place * glm::dvec4(0.0, 0.0, 0.0, 1.0)), 0.0));
 }
+
+// The stored densities summarised for `millsim check` (VoxelVolume::densitySummary).
+constexpr float kSummaryAir = -1000.f;
+
+TEST(VoxelVolumeDensitySummary, CountsRangeAndPercentilesOfTheStoredDensities) {
+  // 1000 voxels of 1, 2, ..., 1000 and as many of air, which is not stored.
+  const glm::ivec3 d(20, 10, 10);
+  std::vector<float> v(std::size_t(d.x) * d.y * d.z, kSummaryAir);
+  for (std::size_t i = 0; i < 1000; ++i) v[2 * i] = float(i + 1);
+  const VoxelVolume vol = VoxelVolume::fromDense(v.data(), d, glm::dvec3(1e-4), kSummaryAir);
+  const VoxelVolume::DensitySummary s = vol.densitySummary(700.f);
+  EXPECT_EQ(s.voxels, 1000u);
+  EXPECT_EQ(s.aboveIso, 300u);
+  EXPECT_EQ(s.min, 1.f);
+  EXPECT_EQ(s.max, 1000.f);
+  const float bin = 999.f / 4096.f;  // percentiles are bin centres
+  EXPECT_NEAR(s.p10, 100.f, bin);
+  EXPECT_NEAR(s.p50, 500.f, bin);
+  EXPECT_NEAR(s.p90, 900.f, bin);
+  EXPECT_EQ(VoxelVolume::fromDense(std::vector<float>(8, kSummaryAir).data(), glm::ivec3(2), glm::dvec3(1e-4), kSummaryAir).densitySummary(0.f).voxels,
+            0u);
+}
