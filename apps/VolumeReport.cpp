@@ -1,8 +1,9 @@
 // What `millsim check` says about each VolumeObject: size, spacing, memory,
-// its densities and tissues, and point-shell counts (the shells are built for the report only). Memory is
-// resident memory: the grid's allocated nodes and buffers, and each shell's
-// buffers, headroom for milling included, which it writes when it builds
-// them (PointShell::memoryBytes); not capacity reserved and never touched.
+// its densities and tissues, and point-shell counts (the shells are built for
+// the report only). Memory is resident memory: the grid's allocated nodes and
+// buffers, and each shell's buffers, headroom for milling included, which it
+// writes when it builds them (PointShell::memoryBytes); not capacity reserved
+// and never touched.
 #include <algorithm>
 #include <chrono>
 #include <iomanip>

@@ -9,7 +9,6 @@
 // voxel.
 #include <algorithm>
 #include <cstddef>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,7 +38,8 @@ public:
   std::size_t valuesDone() const { return done_; }
   std::size_t valuesTotal() const { return total_; }
 
-  // The volume. Throws VolumeError unless every voxel has been given.
+  // The volume (once: the builder is spent). Throws VolumeError unless every
+  // voxel has been given.
   VoxelVolume finish();
 
 private:
