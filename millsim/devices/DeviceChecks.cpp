@@ -68,22 +68,36 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
 
   // The burr against every volume: a burr larger than the volume is almost
   // always a unit mistake (tipRadius is in metres; file spacings in millimetres).
+  // Else, a burr feels nothing smaller than a voxel: where a voxel edge is
+  // longer than its radius it feels the voxels' steps (and #3's point shell,
+  // a point a voxel, can let it slip between points): a clinical CT read at
+  // its own spacing, or a coarse scan (docs/lessons.md, "A real CT").
   const HapticsDevice& device = *devices[0].device;
   MillTool defaultTool;
   const MillTool& tool = device.tool.get() ? *device.tool.get() : defaultTool;
   const double burr = 2.0 * tool.tipRadius.get();
+  const Node& burrNode = device.tool.get() ? static_cast<const Node&>(tool) : device;
+  const std::string whichBurr = device.tool.get() ? "" : "the default MillTool's ";
   const std::vector<PlacedVolume> volumes = placedVolumes(scene);
   for (const PlacedVolume& v : volumes) {
-    const glm::dvec3 local = v.node->size();
-    glm::dvec3 world;
-    for (int a = 0; a < 3; ++a) world[a] = local[a] * glm::length(glm::dvec3(v.localToWorld[a]));
-    const double smallest = std::min({world.x, world.y, world.z});
-    if (!(burr > smallest)) continue;
-    sink.warning(device.tool.get() ? tool.location() : device.location(),
-                 "the burr (" + std::string(device.tool.get() ? "" : "the default MillTool's ") + "tipRadius " +
-                     formatNumber(tool.tipRadius.get()) + " m, " + mm(burr) + " mm across) is larger than the " +
-                     describe(*v.node) + " (" + mm(world.x) + " x " + mm(world.y) + " x " + mm(world.z) +
-                     " mm); check tipRadius (metres) and the volume's voxel size (millimetres in files)");
+    glm::dvec3 world, voxel;
+    for (int a = 0; a < 3; ++a) {
+      const double scale = glm::length(glm::dvec3(v.localToWorld[a]));
+      world[a] = v.node->size()[a] * scale, voxel[a] = v.node->voxelEdges()[a] * scale;
+    }
+    const double longestEdge = std::max({voxel.x, voxel.y, voxel.z});
+    if (burr > std::min({world.x, world.y, world.z}))
+      sink.warning(burrNode.location(),
+                   "the burr (" + whichBurr + "tipRadius " + formatNumber(tool.tipRadius.get()) + " m, " + mm(burr) +
+                       " mm across) is larger than the " + describe(*v.node) + " (" + mm(world.x) + " x " +
+                       mm(world.y) + " x " + mm(world.z) +
+                       " mm); check tipRadius (metres) and the volume's voxel size (millimetres in files)");
+    else if (longestEdge > tool.tipRadius.get())
+      sink.warning(burrNode.location(),
+                   "the voxels of the " + describe(*v.node) + " are " + mm(longestEdge) +
+                       " mm along their longest edge, longer than the burr's radius (" + whichBurr + "tipRadius " +
+                       mm(tool.tipRadius.get()) + " mm): the burr will feel the voxels' steps, not the shape; give "
+                       "the VolumeObject a smaller voxelSize (docs/lessons.md, \"A real CT\") or use a finer scan");
   }
 
   // The renderer's estimated frame cost against the device's frame budget.

@@ -23,6 +23,8 @@ public:
   virtual const std::string& format() const = 0;
   // The volume's extent in its local frame (m): dimensions × voxel size.
   virtual glm::dvec3 size() const = 0;
+  // The voxel's edges along x, y and z in its local frame (m).
+  virtual glm::dvec3 voxelEdges() const = 0;
   // The smallest voxel edge (m).
   virtual double voxelEdge() const = 0;
   // The point shell at an integer scale, built on first request.

@@ -53,6 +53,8 @@ public:
   const std::string& format() const { return contents_ ? contents_->format() : kNoFormat; }
   // The volume's extent in its local frame (m): dimensions x voxel size; zero until loaded.
   glm::dvec3 size() const { return contents_ ? contents_->size() : glm::dvec3(0.0); }
+  // The loaded voxel's edges along x, y and z in the local frame (m); zero until loaded.
+  glm::dvec3 voxelEdges() const { return contents_ ? contents_->voxelEdges() : glm::dvec3(0.0); }
   // The smallest voxel edge (m); zero until loaded.
   double voxelEdge() const { return contents_ ? contents_->voxelEdge() : 0.0; }
   // The point shell at an integer scale, built on first request. Throws
