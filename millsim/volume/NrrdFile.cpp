@@ -397,6 +397,11 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
   } else if (enc == "gzip") {
     z_stream zs{};
     if (inflateInit2(&zs, 15 + 32) != Z_OK) throw VolumeError(name + ": cannot start zlib");
+    // Ended on every way out: a density refused mid-stream throws from conv.feed.
+    struct EndInflate {
+      z_stream& zs;
+      ~EndInflate() { inflateEnd(&zs); }
+    } endInflate{zs};
     std::vector<unsigned char> out(1 << 18);
     std::uintmax_t produced = 0;
     bool streamEnd = false, inputEnd = false;
@@ -430,7 +435,6 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
                 ", it holds " + std::to_string(produced);
       }
     }
-    inflateEnd(&zs);
     if (!error.empty()) throw VolumeError(name + ": " + error);
     if (produced < want)
       throw VolumeError(name + ": truncated data: the header promises " + promised(want, dims, h.typeName) +
