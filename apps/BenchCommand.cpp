@@ -143,10 +143,6 @@ struct PhysicalArgs {
   std::string csv, md, poses;
 };
 
-// Each renderer at its defaults against the physical reference (measure/Physical.h),
-// with today's own-law figure (bench accuracy's "all" row) beside it; with
-// --sweep-voxel, also over each resolution field (the run time against
-// physical error that docs/results.md plots).
 // The force's convergence order per scene: which scenes hold a renderer's
 // pooled order down (a scene whose error the voxels do not set stays flat).
 // "exact" where every h measured under 1e-6 (the half-space for #1 and #2).
@@ -179,6 +175,10 @@ std::string sceneForceOrders(const std::vector<PhysicalRow>& rows) {
   return md.str();
 }
 
+// Each renderer at its defaults against the physical reference (measure/Physical.h),
+// with today's own-law figure (bench accuracy's "all" row) beside it; with
+// --sweep-voxel, also over each resolution field (the run time against
+// physical error that docs/results.md plots).
 int runPhysical(const PhysicalArgs& a) {
   PhysicalConfig cfg;
   AccuracyConfig own;

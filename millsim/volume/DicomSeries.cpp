@@ -597,10 +597,9 @@ VoxelVolume medical::readDicom(const fs::path& fileOrFolder, float airValue) {
 
   const glm::ivec3 dims(int(first.cols), int(first.rows), int(slices.size()));
   const glm::dvec3 spacing = glm::dvec3(first.colSpacing, first.rowSpacing, sliceSpacing) / 1000.0;
-  checkVolumeShape(name, dims, spacing);  // before the voxels are allocated
-
   const std::size_t perSlice = std::size_t(first.rows) * std::size_t(first.cols);
-  // A slice at a time into the volume being built: no dense float copy of the series.
+  // A slice at a time into the volume being built (which checks the shape
+  // before it allocates anything): no dense float copy of the series.
   VolumeBuilder volume(dims, spacing, airValue, name);
   std::vector<float> slice(perSlice);
   for (const Slice& s : slices) {

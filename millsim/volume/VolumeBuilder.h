@@ -35,7 +35,6 @@ public:
   // Copies `count` values (at most what is left).
   void append(const float* values, std::size_t count);
 
-  std::size_t valuesDone() const { return done_; }
   std::size_t valuesTotal() const { return total_; }
 
   // The volume (once: the builder is spent). Throws VolumeError unless every

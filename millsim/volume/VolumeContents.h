@@ -25,8 +25,6 @@ public:
   virtual glm::dvec3 size() const = 0;
   // The voxel's edges along x, y and z in its local frame (m).
   virtual glm::dvec3 voxelEdges() const = 0;
-  // The smallest voxel edge (m).
-  virtual double voxelEdge() const = 0;
   // The point shell at an integer scale, built on first request.
   virtual PointShell& pointShell(int scale) = 0;
   virtual bool hasPointShell(int scale) const = 0;

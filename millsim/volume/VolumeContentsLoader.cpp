@@ -32,10 +32,6 @@ public:
   const std::string& format() const override { return format_; }
   glm::dvec3 size() const override { return glm::dvec3(volume_.dims()) * volume_.voxelSize(); }
   glm::dvec3 voxelEdges() const override { return volume_.voxelSize(); }
-  double voxelEdge() const override {
-    const glm::dvec3 v = volume_.voxelSize();
-    return std::min({v.x, v.y, v.z});
-  }
   PointShell& pointShell(int scale) override {
     auto it = shells_.find(scale);
     if (it != shells_.end()) return *it->second;

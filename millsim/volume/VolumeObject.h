@@ -5,6 +5,7 @@
 // tissues and point shells by a VolumeContents that libmillsim makes
 // (VolumeModule.h: this node's library does not link OpenVDB); the point
 // shell for Algorithm #3 is built only when a renderer asks for it.
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <utility>
@@ -56,7 +57,10 @@ public:
   // The loaded voxel's edges along x, y and z in the local frame (m); zero until loaded.
   glm::dvec3 voxelEdges() const { return contents_ ? contents_->voxelEdges() : glm::dvec3(0.0); }
   // The smallest voxel edge (m); zero until loaded.
-  double voxelEdge() const { return contents_ ? contents_->voxelEdge() : 0.0; }
+  double voxelEdge() const {
+    const glm::dvec3 e = voxelEdges();
+    return std::min({e.x, e.y, e.z});
+  }
   // The point shell at an integer scale, built on first request. Throws
   // VolumeError when no volume is loaded.
   PointShell& pointShell(int scale);
