@@ -16,7 +16,8 @@
 #include "millsim/graphics/GraphicsError.h"
 #include "millsim/graphics/GraphicsModule.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/run/Replay.h"
+#include "millsim/run/RunSetup.h"
+#include "millsim/session/Replay.h"
 #include "millsim/std/EventClock.h"
 #include "millsim/std/Viewpoint.h"
 #include "millsim/x3d/X3DLoader.h"
@@ -76,8 +77,8 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         HapticsDevice* device = findDevice(*r.scene);
         const ToolGeometry geometry = device && device->tool.get() ? device->tool.get()->geometry() : ToolGeometry{};
         tool = toolView(geometry, s.last);
-        std::cout << "replayed " << s.frames << " frames with " << s.rendererName << ", removed "
-                  << s.removedVolume * 1e9 << " mm³\n";
+        std::cout << "replayed " << s.stats.frames << " frames with " << s.rendererName << ", removed "
+                  << s.stats.removedVolume * 1e9 << " mm³\n";
       } else {
         // No trajectory: the scene's events alone, in simulated time from 0 (replay ticks them otherwise).
         EventClock events(*r.scene);

@@ -10,15 +10,12 @@
 #include <optional>
 
 #include "Commands.h"
-#include "LessonReport.h"
-#include "millsim/lesson/RegionAccounting.h"
-#include "millsim/run/HapticLoop.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
+#include "RunSummary.h"
 #include "SaveVolume.h"
-#include "millsim/audio/SoundTrack.h"
 #include "millsim/core/NodeRegistry.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Session.h"
 #include "millsim/x3d/X3DLoader.h"
 
 namespace millsim::app {
@@ -28,7 +25,11 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   struct Args {
     bool strict = false;
     std::string scene, trajectory, log, soundOut, saveVolume, report;
-    ReplayOptions options;
+    struct {
+      std::string renderer;
+      double rate = 0.0;
+      bool timing = false;
+    } options;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
@@ -76,54 +77,22 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         log.open(args->log, std::ios::binary);
         if (!log) throw std::runtime_error(args->log + ": cannot write the log file");
       }
-      ReplayOptions options = args->options;
-      std::unique_ptr<SoundTrack> sound;
-      if (!args->soundOut.empty()) {
-        sound = std::make_unique<SoundTrack>(args->soundOut);
-        options.onFrame = [&sound](const FrameRecord& fr) {
-          sound->add(fr);
-          if (sound->pendingSamples() >= (1u << 16)) sound->flush();
-        };
-      }
-      // Assessment: what was removed inside each MillingTarget and ForbiddenRegion, frame by frame.
-      RegionAccounting regions(*r.scene);
-      if (!regions.empty()) {
-        options.onLoop = [&regions](HapticLoop& loop) {
-          for (std::size_t i = 0; i < regions.volumeCount(); ++i) loop.publishBlocks(i, regions.channel(i));
-        };
-        options.onFrame = [&regions, sound = options.onFrame](const FrameRecord& fr) {
-          if (sound) sound(fr);
-          regions.update(fr.t);
-        };
-      }
-      std::ostream* logOut = args->log.empty() ? nullptr : &log;
+      SessionOptions o;
+      o.renderer = args->options.renderer;
+      o.rate = args->options.rate;
+      o.timing = args->options.timing;
+      o.log = args->log.empty() ? nullptr : &log;
+      o.soundOut = args->soundOut;
       if (recorded)
         std::cout << "replaying a recorded run: " << recorded->frames().size() << " frames from "
                   << args->trajectory << "\n";
-      const ReplaySummary s = recorded ? replayRecorded(*r.scene, *recorded, logOut, options)
-                                       : replay(*r.scene, *trajectory, logOut, options);
-      if (sound) sound->finish(double(s.frames) / s.rate);  // frames at n / rate, each one period long
-      log.close();
-      if (!args->log.empty() && !log) throw std::runtime_error(args->log + ": writing the log failed");
-      std::cout << "replayed " << s.frames << " frames at " << s.rate << " Hz with " << s.rendererName << "\n"
-                << "  peak force " << s.peakForce << " N, peak torque " << s.peakTorque << " N·m, frames in contact "
-                << s.contactFrames << ", most contacts " << s.maxContacts << "\n"
-                << "  removed volume " << s.removedVolume * 1e9 << " mm³, suppressed non-finite outputs "
-                << s.suppressed << "\n";
-      if (sound)
-        std::cout << "  sound: " << sound->seconds() << " s at " << sound->sampleRate() << " Hz, RMS "
-                  << 20.0 * std::log10(std::max(sound->rms(), 1e-9)) << " dBFS, written to " << args->soundOut << "\n";
-      if (args->options.timing)
-        std::cout << "  compute time per frame: mean " << s.meanFrameUs << " µs, p99 " << s.p99FrameUs << " µs\n";
-      regions.publishFields();
-      if (!args->saveVolume.empty()) std::cout << saveVolume(*r.scene, args->saveVolume);
-      if (!args->report.empty()) {
-        const LessonReport report{args->scene, s.rendererName, double(s.frames) / s.rate, s.removedVolume,
-                                  s.peakForce, s.peakTorque, regions.results()};
-        writeReport(args->report, report);
-        std::cout << describeReport(report, false) << "  report written to " << args->report << "\n";
-      }
-      result = kExitOk;
+      auto session = recorded ? Session::review(*r.scene, *recorded, o) : Session::replay(*r.scene, *trajectory, o);
+      const SessionResult s = session->runSimulated();
+      if (log.is_open()) log.close();
+      printReplaySummary(std::cout, s, o.timing);
+      result = finishOutputs(std::cout, std::cerr, s, *r.scene,
+                             {"replay", args->scene, args->log, args->report, args->saveVolume}, !log.fail());
+      return;
     } catch (const std::exception& e) {
       std::cerr << "millsim replay: error: " << e.what() << "\n";
       result = kExitBadInput;

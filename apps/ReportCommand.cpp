@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "Commands.h"
-#include "LessonReport.h"
+#include "millsim/session/LessonReport.h"
 
 namespace millsim::app {
 

@@ -50,7 +50,7 @@ void BM_MillingFrame(benchmark::State& state) {
   VoxelScene scene;
   scene.addVolume(volume, glm::dmat4(1.0), 700.0);
   // What BarbicRenderer's compile() registers.
-  PointShell& fine = const_cast<PointShell&>(scene.pointShell(0, scale));
+  PointShell& fine = const_cast<PointShell&>(scene.shell(0, scale));
   scene.pointShell(0, 2 * scale);
   std::vector<double> cpu, stampCpu;
   cpu.reserve(1 << 14), stampCpu.reserve(1 << 14);

@@ -9,7 +9,7 @@
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/Trajectory.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Replay.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/run/ThreadCpuTime.h"
 #include "millsim/volume/VoxelScene.h"
@@ -83,7 +83,7 @@ ProcedureResult measureProcedure(const RendererSpec& spec, const std::string& la
     }
   };
   const ReplaySummary summary = replay(scene, trajectory, nullptr, options);
-  result.removedMm3 = summary.removedVolume * 1e9;
+  result.removedMm3 = summary.stats.removedVolume * 1e9;
   for (std::size_t i = 0; i < std::size(kPhases); ++i) {
     ProcedurePhase p{kPhases[i], long(times[i].size()), FrameTimes::of(times[i]), {}};
     if (p.frames > 0) p.control = timeConstantWork(p.cpu.p50, std::min(p.frames, 20000L));

@@ -12,29 +12,12 @@ const NodeType& AnyDevice::type() {
   return t;
 }
 
-AnyDevice::AnyDevice() : ares_(std::make_unique<AresDevice>()), mouse_(std::make_unique<MouseDevice>()) {}
-
-AnyDevice::~AnyDevice() = default;
-
-const MouseDevice& AnyDevice::mouse() const {
-  mouse_->position.set(position.get());
-  mouse_->orientation.set(orientation.get());
-  mouse_->depthStep.set(depthStep.get());
-  return *mouse_;
-}
-
 double AnyDevice::outputHoldTime() const { return ares::kDeviceWatchdogSeconds; }
 
 std::unique_ptr<DeviceDriver> AnyDevice::openDriver(const DriverOptions& options) const {
-  // The ARES driver clamps to its own limits too: the same as this node's.
-  ares_->vendorId.set(vendorId.get());
-  ares_->productId.set(productId.get());
-  ares_->serialNumber.set(serialNumber.get());
-  ares_->forceLimit.set(forceLimit.get());
-  ares_->torqueLimit.set(torqueLimit.get());
   std::string aresProblem;
   try {
-    auto driver = ares_->openDriver(options);
+    auto driver = openAres(forceLimit.get(), torqueLimit.get());  // it clamps to the node's limits too
     followsMouse_ = false;
     return driver;
   } catch (const DeviceError& e) {
@@ -42,11 +25,16 @@ std::unique_ptr<DeviceDriver> AnyDevice::openDriver(const DriverOptions& options
   }
   if (options.pointer) {
     followsMouse_ = true;
-    return mouse().openDriver(options);
+    return followPointer(*options.pointer);
   }
   throw DeviceError("AnyDevice found no device to open: no ARES (" + aresProblem +
                     "), and no window for the mouse (no DISPLAY, or --no-window); use a HandDevice or "
                     "TrajectoryDevice to run without either");
+}
+
+std::string AnyDevice::noteOpened() {
+  openedDevice.set(followsMouse_ ? "MouseDevice" : "AresDevice");
+  return followsMouse_ ? "AnyDevice: no ARES found; following the mouse" : "AnyDevice: opened the ARES";
 }
 
 }  // namespace millsim

@@ -1,8 +1,6 @@
 #include "millsim/devices/AresDevice.h"
 
-#include "millsim/driver/AresDriver.h"
 #include "millsim/driver/AresProtocol.h"
-#include "millsim/driver/UsbTransport.h"
 
 namespace millsim {
 
@@ -16,18 +14,7 @@ const NodeType& AresDevice::type() {
 double AresDevice::outputHoldTime() const { return ares::kDeviceWatchdogSeconds; }
 
 std::unique_ptr<DeviceDriver> AresDevice::openDriver(const DriverOptions&) const {
-  UsbMatch m;
-  m.vendorId = static_cast<std::uint16_t>(vendorId.get());
-  m.productId = static_cast<std::uint16_t>(productId.get());
-  m.serialNumber = serialNumber.get();
-  m.deviceName = "ARES device";
-  m.interfaceNumber = ares::kInterfaceNumber;
-  m.endpointIn = ares::kEndpointIn;
-  m.endpointOut = ares::kEndpointOut;
-  AresDriverOptions o;
-  o.forceLimit = forceLimit.get();
-  o.torqueLimit = torqueLimit.get();
-  return std::make_unique<AresDriver>(UsbTransport::open(m), o);
+  return openAres(forceLimit.get(), torqueLimit.get());
 }
 
 }  // namespace millsim

@@ -4,6 +4,8 @@
 // apply. The device holds the tool and the haptics renderer; swapping the
 // renderer element switches the algorithm.
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "millsim/core/NodeKinds.h"
 #include "millsim/devices/PositionCalibration.h"
@@ -82,6 +84,21 @@ public:
   // (SafetyLimits::deviceHold). 0 (the default): unknown, every late frame
   // is zeroed.
   virtual double outputHoldTime() const { return 0.0; }
+
+  // A device the window's pointer moves (MouseDevice, and AnyDevice, which
+  // falls back on it): where the tool starts and how far one Ctrl+wheel
+  // notch moves it. Nothing for a device a hand or a trajectory moves.
+  struct PointerStart {
+    Pose pose;
+    double depthStep = 2e-4;  // m
+  };
+  virtual std::optional<PointerStart> pointerStart() const { return std::nullopt; }
+  // After openDriver (scene thread): whether what was opened follows the
+  // window's pointer (AnyDevice: only when it found nothing else).
+  virtual bool followsPointer() const { return pointerStart().has_value(); }
+  // After openDriver (scene thread): what was opened, for the user, and in
+  // the node's own output fields; empty when the node's type says it all.
+  virtual std::string noteOpened() { return {}; }
   void initialize(DiagnosticSink& sink) override;
 };
 

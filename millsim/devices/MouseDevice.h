@@ -7,48 +7,19 @@
 // output: the window draws the renderer's tool and the device's pose (a green
 // wire ghost) apart, and the HUD shows the force the hand would feel.
 #include "millsim/devices/HapticsDevice.h"
-#include "millsim/driver/TripleBuffer.h"
+#include "millsim/devices/MousePointer.h"
 
 namespace millsim {
 
-// The hand-off from the window thread (the mouse) to the haptic thread (the
-// MouseDevice's driver): the newest pose, wait-free for both.
-class PointerInput {
-public:
-  explicit PointerInput(const Pose& start = {}) {
-    buffer_.back() = DeviceReading{start, false, true};
-    buffer_.publish();
-  }
-  // Window thread.
-  void set(const Pose& pose, bool button) {
-    buffer_.back() = DeviceReading{pose, button, true};
-    buffer_.publish();
-  }
-  // Haptic thread.
-  DeviceReading read() { return buffer_.read(); }
-
-private:
-  TripleBuffer<DeviceReading> buffer_;
-};
-
-class MouseDevice : public HapticsDevice {
+class MouseDevice : public HapticsDevice, public MousePointerFields {
 public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
-
-  SFVec3f position{this, "position", Access::InitializeOnly, glm::vec3(0.f),
-                   "Where the burr starts (m, world), until the mouse first moves; (0, 0, 0): just above the "
-                   "middle of the scene.",
-                   Range::closed(-10, 10).in(quantity::length)};
-  SFRotation orientation{this, "orientation", Access::InitializeOnly, Rotation{},
-                         "How the tool starts (default: shaft up, +Y)."};
-  SFFloat depthStep{this, "depthStep", Access::InputOutput, 2e-4f,
-                    "How far one Ctrl+wheel notch moves the burr along the line of sight (m).",
-                    Range::closed(1e-6, 0.01).in(quantity::length)};
+  MouseDevice() : MousePointerFields(this) {}
 
   // Needs DriverOptions::pointer (the window of `millsim run`); throws DeviceError without it.
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
-  Pose startPose() const;
+  std::optional<PointerStart> pointerStart() const override { return PointerStart{startPose(), depthStep.get()}; }
 };
 
 }  // namespace millsim

@@ -15,7 +15,7 @@
 
 namespace millsim {
 
-class PointShell;  // millsim/volume/PointShell.h: points and boxes, no voxels
+class PointShellQuery;  // millsim/haptics/PointShellQuery.h: points and boxes, no voxels
 
 class HapticScene {
 public:
@@ -67,7 +67,7 @@ public:
   // current with all milling so far. The first call for a (volume, scale)
   // builds it: make that call in compile(), on the scene thread; later calls
   // from step() only bring it up to date, without allocating.
-  virtual const PointShell& pointShell(std::size_t volume, int scale) = 0;
+  virtual const PointShellQuery& pointShell(std::size_t volume, int scale) = 0;
 };
 
 }  // namespace millsim

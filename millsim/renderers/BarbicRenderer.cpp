@@ -17,7 +17,7 @@
 #include "millsim/renderers/FreeStart.h"
 #include "millsim/renderers/Obb.h"
 #include "millsim/renderers/ToolSdf.h"
-#include "millsim/volume/PointShell.h"
+#include "millsim/haptics/PointShellQuery.h"
 
 namespace millsim {
 
@@ -199,7 +199,7 @@ private:
 
   struct Shells {
     const HapticScene::Placement* placement = nullptr;
-    const PointShell* fine = nullptr;
+    const PointShellQuery* fine = nullptr;
   };
 
   // Every volume's shell, brought up to date with the milling since the last
@@ -244,7 +244,7 @@ private:
       const glm::dmat3 toTool = Rt * glm::dmat3(v.localToWorld);
       const glm::dvec3 toToolOrigin = Rt * (glm::dvec3(v.localToWorld[3]) - tool_.position);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
-      const PointShell* shell = s.fine;
+      const PointShellQuery* shell = s.fine;
       // The fine shell's candidates, listed once for the budget and the visit.
       if (p_.culling && shell->collectCandidates(overlaps, candidates_) > p_.maxTested)
         shell = coarse(), flags |= kFlagCoarseFallback;

@@ -2,7 +2,7 @@
 // Algorithm #3 of the paper (§6), after Barbič & James (2008): the tool is a
 // signed distance field, the milled object a point shell (points on the
 // iso-surface, one per surface voxel of a volume `pointShellScale` times coarser,
-// two for a voxel-thin sheet; see millsim/volume/PointShell.h), culled by box–box tests
+// two for a voxel-thin sheet; see millsim/haptics/PointShellQuery.h), culled by box–box tests
 // of the shell's bucket hierarchy against the tool's oriented bounding box.
 // Every frame, penalty forces of the points inside the tool and a 6-DOF
 // virtual coupling to the device are linearised and the 6×6 quasi-static

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "millsim/volume/PointShell.h"
+#include "millsim/haptics/PointShellQuery.h"
 
 namespace millsim {
 

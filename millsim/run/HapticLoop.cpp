@@ -274,30 +274,15 @@ void HapticLoop::join() {
 
 void HapticLoop::runRealTime(double duration) {
   stats_.realTimePriority = requestRealTimePriority();
+  duration_ = duration;
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings_.rate));
-  const auto start = Clock::now();
-  auto deadline = start;
-  auto previous = start;
-  while (!stopRequested_.load(std::memory_order_relaxed)) {
+  clockStart_ = Clock::now();
+  auto deadline = clockStart_;
+  while (true) {
     waitUntil(deadline);
     const auto now = Clock::now();
-    const double t = std::chrono::duration<double>(now - start).count();
-    if (t > duration) break;
     if (now - deadline > period / 2) ++stats_.missedDeadlines;
-    const double periodUs = nextFrame_ == 0 ? microseconds(period) : microseconds(now - previous);
-    const double dt = frameDt(periodUs);
-    previous = now;
-    try {
-      frame(t, dt, periodUs);
-    } catch (const std::exception& e) {  // a renderer or driver bug must still stop the device cleanly
-      failure_ = std::string("haptic frame failed: ") + e.what();
-      break;
-    }
-    stats_.elapsed = t;
-    if (driver_->failed()) {
-      failure_ = driver_->failure();
-      break;
-    }
+    if (!timedFrame(now)) break;
     deadline += period;
     // Fallen more than a period behind: skip the lost slots (counted as
     // missed) instead of bursting frames to catch up.
@@ -308,8 +293,52 @@ void HapticLoop::runRealTime(double duration) {
       deadline += lost * period;
     }
   }
+  endTimedRun();
+}
+
+bool HapticLoop::timedFrame(Clock::time_point now) {
+  if (stopRequested_.load(std::memory_order_relaxed)) return false;
+  const double t = std::chrono::duration<double>(now - clockStart_).count();
+  if (t > duration_) return false;
+  const double nominalUs = 1e6 / settings_.rate;
+  const double periodUs = nextFrame_ == 0 ? nominalUs : microseconds(now - previousFrame_);
+  previousFrame_ = now;
+  try {
+    frame(t, frameDt(periodUs), periodUs);
+  } catch (const std::exception& e) {  // a renderer or driver bug must still stop the device cleanly
+    failure_ = std::string("haptic frame failed: ") + e.what();
+    return false;
+  }
+  stats_.elapsed = t;
+  if (driver_->failed()) {
+    failure_ = driver_->failure();
+    return false;
+  }
+  return true;
+}
+
+void HapticLoop::endTimedRun() {
   finish();
   finished_.store(true, std::memory_order_release);
+}
+
+void HapticLoop::startServo(double duration) {
+  if (thread_.joinable()) throw std::logic_error("HapticLoop::startServo: its own thread is running");
+  duration_ = duration;
+  servoOver_ = false;
+  finished_.store(false, std::memory_order_release);
+}
+
+bool HapticLoop::servoFrame() {
+  if (servoOver_) return false;
+  const auto now = Clock::now();
+  if (nextFrame_ == 0) clockStart_ = now;
+  // The library's scheduler keeps the time; a tick later than half a period is a missed deadline.
+  else if (microseconds(now - previousFrame_) > 1.5e6 / settings_.rate) ++stats_.missedDeadlines;
+  if (timedFrame(now)) return true;
+  servoOver_ = true;
+  endTimedRun();
+  return false;
 }
 
 void HapticLoop::finish() {

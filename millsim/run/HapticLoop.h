@@ -7,7 +7,9 @@
 // The same frame() serves both clocks:
 //  - stepSimulated: one frame at t = n / rate on the calling thread (replay, tests);
 //    bit-reproducible because nothing reads the wall clock unless timing is on;
-//  - start: a dedicated real-time thread, sleep-then-spin to each deadline.
+//  - start: a dedicated real-time thread, sleep-then-spin to each deadline;
+//  - startServo + servoFrame: a thread another library owns (a device
+//    vendor's servo scheduler) calls one frame per device tick.
 //
 // Hand-offs are wait-free: frame records go into an SPSC ring the scene
 // thread drains (a full ring drops records and counts them), the newest
@@ -132,6 +134,15 @@ public:
   // Real time on a new thread, until `duration` seconds have passed, stop()
   // is called, or the device fails. Returns at once.
   void start(double duration);
+  // A servo loop another library owns: startServo() on the scene thread,
+  // then servoFrame() once per device tick on that library's thread, which
+  // is the haptic thread from then on. The first call is t = 0; each frame
+  // integrates over the time since the previous call, as the real-time
+  // thread's do. Returns false once the run is over (`duration` passed,
+  // stop(), the device failed, a frame threw): the loop has then finished
+  // (the device released) and later calls do nothing.
+  void startServo(double duration);
+  bool servoFrame();
   void stop() { stopRequested_.store(true, std::memory_order_relaxed); }
   void join();
   bool finished() const { return finished_.load(std::memory_order_acquire); }
@@ -188,6 +199,11 @@ private:
   // After the device's stop(): logs the zero output it received.
   void recordStop();
   void runRealTime(double duration);
+  // One frame at `now` of a wall-clock run that started at clockStart_
+  // (the real-time thread and servoFrame); false when the run is over.
+  bool timedFrame(std::chrono::steady_clock::time_point now);
+  // After the last timed frame: releases the device and says so.
+  void endTimedRun();
 
   VoxelScene& scene_;
   RendererSwitch switch_;
@@ -242,6 +258,11 @@ private:
   std::atomic<std::uint32_t> liveVersion_{0};
   std::uint32_t liveSeen_ = 0;
   bool enabled_ = true;  // the haptic thread's copy
+
+  // Wall-clock runs (real-time thread, servo): the haptic thread's own.
+  std::chrono::steady_clock::time_point clockStart_, previousFrame_;
+  double duration_ = 0.0;
+  bool servoOver_ = false;
 
   std::thread thread_;
   std::atomic<bool> stopRequested_{false};

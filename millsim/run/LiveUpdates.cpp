@@ -13,30 +13,31 @@ namespace millsim {
 LiveUpdates::LiveUpdates(CompiledRun& run, HapticLoop& loop)
     : run_(run),
       loop_(loop),
-      enabled_(run.settings.enabled),
-      forceLimit_(run.settings.limits.forceLimit),
-      torqueLimit_(run.settings.limits.torqueLimit) {
-  for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) millable_.push_back(run.scene->volume(i).millable.load());
+      enabled_({&run.device->enabled}),
+      forceLimit_({&run.device->forceLimit}),
+      torqueLimit_({&run.device->torqueLimit}) {
+  for (std::size_t i = 0; i < run.scene->volumeCount(); ++i) {
+    VolumeObject* node = run.scene->volume(i).node;
+    millable_.push_back(node ? FieldWatch({&node->millable}) : FieldWatch());
+  }
 }
 
 std::string LiveUpdates::poll() {
   std::ostringstream notice;
   const HapticsDevice& d = *run_.device;
-  const bool enabled = d.enabled.get();
-  const double force = d.forceLimit.get(), torque = d.torqueLimit.get();
-  if (enabled != enabled_ || force != forceLimit_ || torque != torqueLimit_) {
-    if (enabled != enabled_) notice << "force output " << (enabled ? "on" : "off") << "  ";
-    if (force != forceLimit_) notice << "forceLimit " << force << " N  ";
-    if (torque != torqueLimit_) notice << "torqueLimit " << torque << " N·m  ";
-    enabled_ = enabled, forceLimit_ = force, torqueLimit_ = torque;
-    loop_.setLive(enabled, force, torque);
+  const bool enabled = enabled_.changed(), force = forceLimit_.changed(), torque = torqueLimit_.changed();
+  if (enabled || force || torque) {
+    if (enabled) notice << "force output " << (d.enabled.get() ? "on" : "off") << "  ";
+    if (force) notice << "forceLimit " << d.forceLimit.get() << " N  ";
+    if (torque) notice << "torqueLimit " << d.torqueLimit.get() << " N·m  ";
+    enabled_.mark(), forceLimit_.mark(), torqueLimit_.mark();
+    loop_.setLive(d.enabled.get(), d.forceLimit.get(), d.torqueLimit.get());
   }
   for (std::size_t i = 0; i < millable_.size(); ++i) {
+    if (!millable_[i].changed()) continue;
+    millable_[i].mark();
     VoxelScene::Volume& v = run_.scene->volume(i);
-    if (!v.node) continue;
     const bool millable = v.node->millable.get();
-    if (millable == millable_[i]) continue;
-    millable_[i] = millable;
     v.millable.store(millable, std::memory_order_relaxed);
     notice << (v.node->defName().empty() ? "volume " + std::to_string(i) : v.node->defName())
            << (millable ? " millable" : " not millable") << "  ";

@@ -1,7 +1,7 @@
 #pragma once
 // LiveUpdates: the live part of the scene graph during a run. The haptic
-// thread never reads fields, so the scene thread polls the fields that may
-// change while running — set by the window's keys, by routes, or by a plugin
+// thread never reads fields, so the scene thread watches (FieldWatch) the
+// fields that may change while running — set by the window's keys, by routes, or by a plugin
 // — and hands each change over wait-free:
 //   device enabled, forceLimit, torqueLimit → HapticLoop::setLive
 //   VolumeObject millable                    → VoxelScene::Volume::millable
@@ -11,6 +11,8 @@
 // takes effect at the next run; docs/nodes.md says so per field.
 #include <string>
 #include <vector>
+
+#include "millsim/core/FieldWatch.h"
 
 namespace millsim {
 
@@ -27,9 +29,8 @@ public:
 private:
   CompiledRun& run_;
   HapticLoop& loop_;
-  bool enabled_;
-  double forceLimit_, torqueLimit_;
-  std::vector<bool> millable_;
+  FieldWatch enabled_, forceLimit_, torqueLimit_;
+  std::vector<FieldWatch> millable_;  // per volume of the run (empty for one without a node)
 };
 
 }  // namespace millsim

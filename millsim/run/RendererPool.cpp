@@ -15,12 +15,6 @@ namespace millsim {
 namespace {
 // The keys 1, 2, 3 of the window, in the paper's order (#1, #2, #3).
 const char* const kKeyed[] = {"LineProxyRenderer", "SurfacePointRenderer", "BarbicRenderer"};
-
-std::string fieldValues(const Node& node) {
-  std::string out;
-  for (const Field* f : node.fields()) out += std::string(f->name()) + "=" + f->toString() + "\n";
-  return out;
-}
 }  // namespace
 
 RendererPool::RendererPool(Scene& scene, CompiledRun& run, const HapticAlgorithm* initial) : run_(run) {
@@ -48,7 +42,7 @@ RendererPool::RendererPool(Scene& scene, CompiledRun& run, const HapticAlgorithm
     } else {
       prepare(s);
     }
-    s.fields = fieldValues(*s.node);
+    s.fields = FieldWatch::ofNode(*s.node);
     slots_.push_back(std::move(s));
   }
   fieldSeen_ = own.get();
@@ -110,11 +104,10 @@ std::string RendererPool::followRendererFields(HapticLoop& loop) {
   std::string notice;
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     Slot& s = slots_[i];
-    const std::string now = fieldValues(*s.node);
-    if (now == s.fields) continue;
+    if (!s.fields.changed()) continue;
     const auto& node = dynamic_cast<const HapticsRendererNode&>(*s.node);
     if (!node.traits().compilesWithoutScene) {
-      s.fields = now;
+      s.fields.mark();
       notice = s.type + ": a field changed; it takes effect at the next run (its compile reads the scene)";
       continue;
     }
@@ -122,7 +115,7 @@ std::string RendererPool::followRendererFields(HapticLoop& loop) {
     try {
       fresh = node.compile(run_.tool, *run_.scene);
     } catch (const std::exception& e) {
-      s.fields = now;
+      s.fields.mark();
       notice = s.type + ": cannot apply the changed fields: " + e.what();
       continue;
     }
@@ -136,7 +129,7 @@ std::string RendererPool::followRendererFields(HapticLoop& loop) {
       s.identity = fresh.get();
       s.algorithm = std::move(fresh);
     }
-    s.fields = now;
+    s.fields.mark();
     notice = s.type + ": changed fields applied live";
   }
   return notice;

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "millsim/core/FieldWatch.h"
 #include "millsim/haptics/HapticsRenderer.h"
 
 namespace millsim {
@@ -71,7 +72,7 @@ private:
     std::shared_ptr<Node> node;                  // the renderer node (the device's, or a default one)
     std::unique_ptr<HapticAlgorithm> algorithm;  // null while the loop has it
     const HapticAlgorithm* identity = nullptr;   // recognises it when it comes back
-    std::string fields;                          // the node's field values when last compiled
+    FieldWatch fields;                           // the node's fields: changed since last compiled?
     ToolGeometry tool;                           // the burr `algorithm` was compiled for
     std::string refusal;                         // why this type cannot render that burr (empty: it can)
   };

@@ -132,7 +132,8 @@ glm::dvec3 PointShell::materialCentre(const Fine& fine, int I, int J, int K) con
 
 PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale, std::size_t headroomPerPoint,
                        std::size_t minHeadroom)
-    : volume_(&volume), iso_(isoValue), scale_(scale) {
+    : volume_(&volume), iso_(isoValue) {
+  scale_ = scale;
   if (scale < 1) throw VolumeError("point shell scale must be a positive integer, got " + std::to_string(scale));
   coarseDims_ = (volume.dims() + scale - 1) / scale;
   bucketDims_ = (coarseDims_ + kBucket - 1) / kBucket;

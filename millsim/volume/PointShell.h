@@ -43,39 +43,21 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "millsim/haptics/PointShellQuery.h"
 #include "millsim/volume/DirtyBlocks.h"
 
 namespace millsim {
 
 // Built from and updated against the voxels (PointShell.cpp reads them through
-// OpenVDB); queried by Algorithm #3, which sees only points and boxes.
+// OpenVDB); queried by Algorithm #3 as a PointShellQuery (millsim/haptics),
+// which holds the points and boxes and nothing of the voxels.
 class VoxelVolume;
 
-struct ShellPoint {
-  glm::vec3 position;  // volume-local frame, metres
-  glm::vec3 normal;    // unit, pointing out of the material
-};
-
-struct Aabb {
-  glm::vec3 lo{std::numeric_limits<float>::max()};
-  glm::vec3 hi{-std::numeric_limits<float>::max()};
-  bool empty() const { return lo.x > hi.x; }
-  void add(const glm::vec3& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
-  void add(const Aabb& b) {
-    if (!b.empty()) lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi);
-  }
-  bool overlaps(const Aabb& b) const {
-    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y && lo.z <= b.hi.z && b.lo.z <= hi.z;
-  }
-};
-
-class PointShell {
+class PointShell : public PointShellQuery {
 public:
-  static constexpr int kBucket = 8;  // coarse voxels per bucket edge
   // Points a bucket may hold: its capacity, reserved once (one per voxel; a
   // sheet voxel has two, but its outside neighbours have none).
   static constexpr std::size_t kMaxBucketPoints = std::size_t(kBucket) * kBucket * kBucket;
-  static constexpr int kSuper = 4;   // buckets per super-bucket edge
   // Headroom for milling, in point slots: kHeadroomPerPoint per point at
   // build, at least kMinHeadroom (room to move a few full buckets).
   static constexpr std::size_t kHeadroomPerPoint = 2;
@@ -85,8 +67,6 @@ public:
   PointShell(const VoxelVolume& volume, float isoValue, int scale, std::size_t headroomPerPoint = kHeadroomPerPoint,
              std::size_t minHeadroom = kMinHeadroom);
 
-  int scale() const { return scale_; }
-  std::size_t size() const { return count_; }
   // Bytes of every buffer the shell holds, headroom and scratch included; all
   // of it is written at construction, so this is what the shell keeps resident.
   std::size_t memoryBytes() const;
@@ -109,80 +89,10 @@ public:
   // Rebuilds every bucket (after changes this shell missed). Does not allocate.
   void rebuildAll(const VoxelVolume& volume);
 
-  // The buckets `overlaps` accepts, as forEachCandidate would visit them
-  // (indices into `out`, cleared first), and their points' count: one
-  // traversal for a budget check and the visit after it. Does not allocate
-  // once `out` holds bucketCount().
-  template <class Overlaps> std::size_t collectCandidates(Overlaps&& overlaps, std::vector<int>& out) const {
-    out.clear();
-    std::size_t n = 0;
-    for (const Super& s : supers_) {
-      if (s.count == 0 || !overlaps(s.box)) continue;
-      for (int b : s.buckets) {
-        const Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.size != 0 && overlaps(bucket.box)) n += bucket.size, out.push_back(b);
-      }
-    }
-    return n;
-  }
-  // Visits the points of the buckets collectCandidates listed.
-  template <class Visit> void forEachIn(const std::vector<int>& listed, Visit&& visit) const {
-    for (int b : listed) {
-      const Bucket& bucket = buckets_[std::size_t(b)];
-      for (const ShellPoint *p = first(bucket), *end = p + bucket.size; p != end; ++p) visit(*p);
-    }
-  }
-  std::size_t bucketCount() const { return buckets_.size(); }
-  // Whether any candidate point satisfies `pred` (stops at the first).
-  template <class Overlaps, class Pred> bool anyCandidate(Overlaps&& overlaps, Pred&& pred) const {
-    for (const Super& s : supers_) {
-      if (s.count == 0 || !overlaps(s.box)) continue;
-      for (int b : s.buckets) {
-        const Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.size == 0 || !overlaps(bucket.box)) continue;
-        for (const ShellPoint *p = first(bucket), *end = p + bucket.size; p != end; ++p)
-          if (pred(*p)) return true;
-      }
-    }
-    return false;
-  }
-
-  // Visits the points of every bucket whose bounding box `overlaps(Aabb)` accepts:
-  // the test is applied first to super-buckets, then to buckets.
-  template <class Overlaps, class Visit> void forEachCandidate(Overlaps&& overlaps, Visit&& visit) const {
-    for (const Super& s : supers_) {
-      if (s.count == 0 || !overlaps(s.box)) continue;
-      for (int b : s.buckets) {
-        const Bucket& bucket = buckets_[std::size_t(b)];
-        if (bucket.size == 0 || !overlaps(bucket.box)) continue;
-        for (const ShellPoint *p = first(bucket), *end = p + bucket.size; p != end; ++p) visit(*p);
-      }
-    }
-  }
-  // Every point, bucket by bucket (the brute-force path, for comparison).
-  template <class Visit> void forEach(Visit&& visit) const {
-    for (const Bucket& b : buckets_)
-      for (const ShellPoint *p = first(b), *end = p + b.size; p != end; ++p) visit(*p);
-  }
   // All points in a stable order (bucket order, then scan order): for tests.
   std::vector<ShellPoint> points() const;
 
 private:
-  // Points [begin, begin + size) of points_ (cells_ holds each one's coarse
-  // voxel within the bucket, (k·8 + j)·8 + i); the range is `capacity` long.
-  struct Bucket {
-    Aabb box;
-    std::uint32_t begin = 0;
-    std::uint16_t size = 0, capacity = 0;
-    bool material = false;  // held material at build: only such a bucket can ever hold points
-  };
-  const ShellPoint* first(const Bucket& b) const { return points_.data() + b.begin; }
-  struct Super {
-    std::vector<int> buckets;
-    Aabb box;
-    std::size_t count = 0;
-  };
-
   // Accessor: the grid's const accessor (a template so that this header stays free of OpenVDB).
   template <class Accessor> float coarse(const Accessor& acc, int I, int J, int K) const;
   // The shell points of coarse voxel (I, J, K) with value v and six
@@ -213,14 +123,9 @@ private:
 
   const VoxelVolume* volume_;
   float iso_;
-  int scale_;
   glm::ivec3 coarseDims_;
   glm::ivec3 bucketDims_;
   glm::ivec3 superDims_;
-  std::vector<Bucket> buckets_;
-  std::vector<Super> supers_;
-  std::size_t count_ = 0;
-  std::vector<ShellPoint> points_;    // every bucket's range, then the free end from tail_
   std::vector<std::uint16_t> cells_;  // parallel to points_
   std::size_t tail_ = 0;
   std::vector<int> order_;            // compact()'s scratch: the buckets that hold material

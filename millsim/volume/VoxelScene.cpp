@@ -111,7 +111,9 @@ glm::dvec3 VoxelScene::gradient(const glm::dvec3& world) const {
   return g;
 }
 
-const PointShell& VoxelScene::pointShell(std::size_t volume, int scale) {
+const PointShellQuery& VoxelScene::pointShell(std::size_t volume, int scale) { return shell(volume, scale); }
+
+const PointShell& VoxelScene::shell(std::size_t volume, int scale) {
   Volume& v = *volumes_.at(volume);
   for (Shell& s : shells_) {
     if (s.volume != volume || s.scale != scale) continue;

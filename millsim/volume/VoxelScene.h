@@ -83,7 +83,9 @@ public:
   void focus(const glm::dvec3& world, double reach) override;
   double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
   // Merges the milling the shell has not seen yet (see Shell), then returns it.
-  const PointShell& pointShell(std::size_t volume, int scale) override;
+  const PointShellQuery& pointShell(std::size_t volume, int scale) override;
+  // The same, as the volume room's own type (tests and benchmarks look inside).
+  const PointShell& shell(std::size_t volume, int scale);
 
   // The hardness of the voxel nearest a world point in the first volume that
   // has a tissue there; 1 elsewhere.

@@ -22,7 +22,8 @@
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/graphics/SceneRenderer.h"
-#include "millsim/run/Replay.h"
+#include "millsim/run/RunSetup.h"
+#include "millsim/session/Replay.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "millsim/x3d/X3DLoader.h"
 
@@ -129,7 +130,7 @@ TEST_P(SceneRender, DrawsToothToolHoleAndMatchesReference) {
   ReplayOptions options;
   options.until = kReplayUntil;
   const ReplaySummary summary = replay(scene, trajectory, nullptr, options);
-  ASSERT_GT(summary.removedVolume, 0.0) << "the trajectory should mill";
+  ASSERT_GT(summary.stats.removedVolume, 0.0) << "the trajectory should mill";
   renderer->rebuildVolume(0);
   renderer->render(std::nullopt);
   writePng(renderer->readPixels(), pictures / (stem + ".above-after.png"));

@@ -14,7 +14,7 @@
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/run/FrameLog.h"
 #include "millsim/run/RendererPool.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Replay.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/volume/VoxelScene.h"
 #include "millsim/x3d/X3DLoader.h"

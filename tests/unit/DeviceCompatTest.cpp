@@ -58,7 +58,7 @@ TEST(AnyDevice, FollowsTheMouseWhenThereIsNoAres) {
   LoadResult r = load(scene("", R"(<AnyDevice position="0 0.01 0" forceLimit="5"><MillTool/><SurfacePointRenderer/></AnyDevice>)"));
   ASSERT_TRUE(r.ok()) << r.report();
   const AnyDevice& any = only<AnyDevice>(r);
-  EXPECT_EQ(any.mouse().startPose().position, glm::dvec3(0.0, 0.01f, 0.0)) << "the mouse starts where the scene says";
+  EXPECT_EQ(any.startPose().position, glm::dvec3(0.0, 0.01f, 0.0)) << "the mouse starts where the scene says";
   Pose hand;
   hand.position = glm::dvec3(0.001, 0.002, 0.003);
   PointerInput pointer(hand);
@@ -67,7 +67,7 @@ TEST(AnyDevice, FollowsTheMouseWhenThereIsNoAres) {
   // No ARES is attached here (the device tests mock one under umockdev).
   auto driver = any.openDriver(withWindow);
   ASSERT_TRUE(driver);
-  EXPECT_TRUE(any.followsMouse());
+  EXPECT_TRUE(any.followsPointer());
   EXPECT_EQ(driver->read(0.0, 0.001).pose.position, hand.position) << "it reads the window's pointer";
   try {
     (void)any.openDriver(DriverOptions{});

@@ -231,7 +231,7 @@ TEST(EventCascade, DrawnFieldsSeeWhatAnEventChanged) {
   LoadResult r = load(mover(false));
   ASSERT_TRUE(r.ok()) << r.report();
   EventClock events(*r.scene);
-  DrawnFields drawn(*r.scene);
+  FieldWatch drawn = drawnFields(*r.scene);
   EXPECT_FALSE(drawn.changed());
   events.tick(0.0);
   events.tick(0.5);
@@ -283,7 +283,7 @@ TEST(EventCascade, DrawnFieldsSeeAMatrixTransformsMatrix) {
     <MatrixTransform DEF="Drawn"><Shape><Sphere radius="0.01"/></Shape></MatrixTransform>
     <ROUTE fromNode="Source" fromField="matrix_changed" toNode="Drawn" toField="set_matrix"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  DrawnFields drawn(*r.scene);
+  FieldWatch drawn = drawnFields(*r.scene);
   EXPECT_FALSE(drawn.changed());
   defNode<MatrixTransform>(r, "Source").matrix.setFromString("1 0 0 0.01  0 1 0 0  0 0 1 0  0 0 0 1");
   EXPECT_TRUE(drawn.changed()) << "the routed matrix changed what is drawn";

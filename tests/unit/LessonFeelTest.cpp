@@ -16,7 +16,7 @@
 #include "measure/Renderers.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Replay.h"
 #include "millsim/x3d/X3DLoader.h"
 
 using namespace millsim;

@@ -471,7 +471,7 @@ TEST_P(EveryRenderer, CompilesWithoutTheSceneExactlyWhenItSaysSo) {
     double field(const glm::dvec3&) const override { return ++reads, 1.0; }
     glm::dvec3 gradient(const glm::dvec3&) const override { return ++reads, glm::dvec3(0, 1, 0); }
     double voxelSize() const override { return ++reads, 1e-4; }
-    const PointShell& pointShell(std::size_t, int) override {
+    const PointShellQuery& pointShell(std::size_t, int) override {
       ++reads;
       throw std::logic_error("pointShell read");
     }

@@ -20,7 +20,7 @@
 #include "millsim/run/LiveUpdates.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/run/RendererPool.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Replay.h"
 #include "millsim/run/RunSetup.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/volume/VoxelScene.h"
@@ -51,8 +51,8 @@ std::string replayToString(const std::string& scenePath, const std::string& rend
   options.renderer = renderer;
   std::ostringstream log;
   ReplaySummary s = replay(*r.scene, Trajectory::parse(csv, "short.csv"), &log, options);
-  EXPECT_EQ(s.frames, 301);
-  EXPECT_EQ(s.suppressed, 0);
+  EXPECT_EQ(s.stats.frames, 301);
+  EXPECT_EQ(s.stats.suppressed, 0);
   return log.str();
 }
 
@@ -365,7 +365,7 @@ TEST(Replay, BarbicMillsTheHoleAtItsDefaultShellScale) {
   options.until = 10.0;
   const ReplaySummary s =
       replay(*r.scene, Trajectory::load(MILLSIM_SOURCE_DIR "/x3d/trajectories/section-8-2.csv"), nullptr, options);
-  EXPECT_GT(s.removedVolume * 1e9, 2.0) << "mm³ removed by 10 s (the other renderers remove 2.4-2.6)";
+  EXPECT_GT(s.stats.removedVolume * 1e9, 2.0) << "mm³ removed by 10 s (the other renderers remove 2.4-2.6)";
 }
 
 // The scene graph is live while running: setting the device's forceLimit and

@@ -20,7 +20,7 @@
 #include "millsim/renderers/DeepestPoint.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/run/HapticLoop.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Replay.h"
 #include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/VoxelVolume.h"
 #include "millsim/x3d/X3DLoader.h"

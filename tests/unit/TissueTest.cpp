@@ -16,7 +16,7 @@
 #include "millsim/lesson/ForbiddenRegion.h"
 #include "millsim/lesson/MillingTarget.h"
 #include "millsim/lesson/RegionAccounting.h"
-#include "millsim/run/Replay.h"
+#include "millsim/session/Replay.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/x3d/X3DLoader.h"
 #include "millsim/devices/HandDevice.h"

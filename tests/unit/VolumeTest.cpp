@@ -502,7 +502,7 @@ TEST(PointShell, IncrementalUpdateEqualsRebuildAfterRandomMilling) {
   std::mt19937 rng(15);
   std::uniform_real_distribution<double> u(-1.0, 1.0), radius(1.0e-3, 6.0e-3);
   auto compare = [&](int s, int stamp) {
-    const auto a = scene.pointShell(0, s).points(), b = PointShell(v, 0.5f, s).points();
+    const auto a = scene.shell(0, s).points(), b = PointShell(v, 0.5f, s).points();
     ASSERT_EQ(a.size(), b.size()) << "scale " << s << " after stamp " << stamp;
     for (std::size_t i = 0; i < a.size(); ++i) {
       ASSERT_EQ(a[i].position, b[i].position) << "scale " << s << " stamp " << stamp << " point " << i;
@@ -523,7 +523,7 @@ TEST(PointShell, IncrementalUpdateEqualsRebuildAfterRandomMilling) {
   }
   EXPECT_GT(removed, 0.0);
   for (int s : scales) ASSERT_NO_FATAL_FAILURE(compare(s, 120));  // scale 6 was dormant throughout
-  for (int s : scales) EXPECT_EQ(scene.pointShell(0, s).droppedPoints(), 0u) << "scale " << s;
+  for (int s : scales) EXPECT_EQ(scene.shell(0, s).droppedPoints(), 0u) << "scale " << s;
 }
 
 // Issue 15, part 4: the point shell of the tooth phantom at scale 1 costs at

@@ -1,4 +1,4 @@
-#include "RunSound.h"
+#include "millsim/session/RunSound.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +9,7 @@
 
 #include "millsim/run/HapticLoop.h"
 
-namespace millsim::app {
+namespace millsim {
 
 namespace {
 
@@ -77,10 +77,10 @@ void RunSound::pump() {
   }
 }
 
-void RunSound::finish(std::ostream& errors) {
+void RunSound::finish(std::optional<double> end) {
   if (track_) {
     try {
-      take(track_->finish(haveRecord_ ? lastT_ + 1.0 / options_.hapticRate : 0.0));
+      take(track_->finish(end ? *end : haveRecord_ ? lastT_ + 1.0 / options_.hapticRate : 0.0));
     } catch (const std::exception& e) {
       fail(e);
     }
@@ -91,13 +91,13 @@ void RunSound::finish(std::ostream& errors) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     output_.reset();
   }
-  if (!error_.empty()) errors << "millsim run: error: " << error_ << "\n";
 }
 
 void RunSound::printSummary(std::ostream& os) const {
   if (!track_) return;
-  os << std::fixed << std::setprecision(2) << "  sound: " << track_->seconds() << " s at " << track_->sampleRate()
-     << " Hz, RMS " << std::setprecision(1) << 20.0 * std::log10(std::max(track_->rms(), 1e-9)) << " dBFS";
+  // The length as it is (a replay's is exactly frames / rate: "4.801 s").
+  os << "  sound: " << track_->seconds() << " s at " << track_->sampleRate() << " Hz, RMS " << std::fixed
+     << std::setprecision(1) << 20.0 * std::log10(std::max(track_->rms(), 1e-9)) << " dBFS";
   if (!track_->wavPath().empty()) os << ", written to " << track_->wavPath();
   if (!device_.empty())
     os << "; played live on " << device_ << " (underruns " << underruns_ << ", dropped " << std::setprecision(2)
@@ -106,4 +106,4 @@ void RunSound::printSummary(std::ostream& os) const {
   os.unsetf(std::ios::fixed);
 }
 
-}  // namespace millsim::app
+}  // namespace millsim

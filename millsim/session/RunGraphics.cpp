@@ -1,4 +1,4 @@
-#include "RunGraphics.h"
+#include "millsim/session/RunGraphics.h"
 
 #include <chrono>
 
@@ -10,9 +10,9 @@
 #include "millsim/volume/VoxelScene.h"
 #include "millsim/window/AppWindow.h"
 #include "millsim/window/WindowModule.h"
-#include "RunControls.h"
+#include "millsim/session/RunControls.h"
 
-namespace millsim::app {
+namespace millsim {
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -168,6 +168,9 @@ void RunGraphics::paceFrames(const std::function<void(std::size_t, const std::ve
     }
   }
   stats_.frames = long(all.count());
+  stats_.width = options_.width;
+  stats_.height = options_.height;
+  stats_.screenshot = options_.screenshot.string();
   stats_.meanMs = all.mean() * 1e3;
   stats_.p95Ms = all.p95() * 1e3;
   stats_.updateFrames = long(updates.count());
@@ -181,4 +184,4 @@ RunGraphicsStats RunGraphics::stop() {
   return stats_;
 }
 
-}  // namespace millsim::app
+}  // namespace millsim

@@ -1,5 +1,6 @@
 #pragma once
-// Deterministic replay: runs a scene's device through a trajectory at a fixed
+// Deterministic replay, as one call over a Session (millsim/session/Session.h)
+// driven in simulated time: runs a scene's device through a trajectory at a fixed
 // rate in simulated time (HapticLoop::stepSimulated), milling when the button
 // is on, and writes one log row per frame (FrameLog.h). A TrajectoryDevice
 // plays it open loop, a HandDevice follows it closed loop, a hardware device
@@ -18,12 +19,9 @@
 #include "millsim/devices/RecordedRun.h"
 #include "millsim/devices/Trajectory.h"
 #include "millsim/haptics/HapticsRenderer.h"
-#include "millsim/run/RunSetup.h"
+#include "millsim/run/HapticLoop.h"
 
 namespace millsim {
-
-struct FrameRecord;
-class HapticLoop;
 
 struct ReplayOptions {
   double rate = 0.0;             // Hz; 0 = the device's desiredHapticsRate
@@ -36,16 +34,11 @@ struct ReplayOptions {
 
 struct ReplaySummary {
   std::string rendererName;
-  long frames = 0;
-  double rate = 0.0;
-  double peakForce = 0.0;   // N, after the safety layer
-  double peakTorque = 0.0;  // N·m
-  int maxContacts = 0;
-  long contactFrames = 0;
-  double removedVolume = 0.0;  // m³
-  long suppressed = 0;         // frames whose output was non-finite and zeroed
-  double meanFrameUs = 0.0, p99FrameUs = 0.0;  // only with timing
-  HapticOutput last;           // the final frame's output (e.g. where to draw the tool)
+  double rate = 0.0;  // Hz
+  // Frames, peak force (after the safety layer) and torque, contacts,
+  // removed volume, suppressed non-finite outputs; compute time only with timing.
+  LoopStats stats;
+  HapticOutput last;  // the final frame's output (e.g. where to draw the tool)
 };
 
 // Throws std::runtime_error with a clear message if the scene has no device,

@@ -1,4 +1,4 @@
-#include "LessonReport.h"
+#include "millsim/session/LessonReport.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace millsim::app {
+namespace millsim {
 
 using Json = nlohmann::ordered_json;
 
@@ -160,4 +160,4 @@ std::string describeReport(const LessonReport& r, bool markdown) {
   return o.str();
 }
 
-}  // namespace millsim::app
+}  // namespace millsim

@@ -6,7 +6,7 @@
 
 #include "millsim/lesson/RegionAccounting.h"
 
-namespace millsim::app {
+namespace millsim {
 
 struct LessonReport {
   std::string scene, renderer;
@@ -27,4 +27,4 @@ void writeReport(const std::string& path, const LessonReport& report);
 LessonReport readReport(const std::string& path);
 std::string describeReport(const LessonReport& report, bool markdown);
 
-}  // namespace millsim::app
+}  // namespace millsim

@@ -10,7 +10,7 @@
 #include "millsim/run/HapticLoop.h"
 #include "millsim/window/AppWindow.h"
 
-namespace millsim::app {
+namespace millsim {
 
 class HudFeed {
 public:
@@ -27,4 +27,4 @@ private:
   std::vector<double> starts_;   // t of each ring entry
 };
 
-}  // namespace millsim::app
+}  // namespace millsim

@@ -5,13 +5,14 @@
 // (libmillsim_audio, SDL2), whose own thread plays them. Nothing here runs on
 // the haptic thread or makes it wait. No audio device is a notice, not an error.
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "millsim/audio/AudioModule.h"
 #include "millsim/audio/SoundTrack.h"
 
-namespace millsim::app {
+namespace millsim {
 
 struct RunSoundOptions {
   std::string wavPath;     // --sound-out; empty: none
@@ -31,10 +32,13 @@ public:
   // After each drain: writes the new samples and queues them to the device.
   void pump();
   // After the last drain: the sound up to the run's end, the file closed, the
-  // device given its last samples. A failed WAV write is printed to `errors`.
-  void finish(std::ostream& errors);
-  // False when writing the WAV failed.
+  // device given its last samples (a failed WAV write: error()). `end`: where
+  // the sound ends (s); by default one haptic period after the last record
+  // (a simulated run passes frames / rate, its exact length).
+  void finish(std::optional<double> end = std::nullopt);
+  // False when writing the WAV failed; error() says why.
   bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
   void printSummary(std::ostream& os) const;
 
 private:
@@ -53,4 +57,4 @@ private:
   std::string error_;
 };
 
-}  // namespace millsim::app
+}  // namespace millsim

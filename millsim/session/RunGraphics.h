@@ -1,5 +1,5 @@
 #pragma once
-// The graphics thread of `millsim run`: the window (libmillsim_window) when
+// The graphics thread of a Session (millsim run): the window (libmillsim_window) when
 // there is a display, else an offscreen OSMesa context; its own copy of the
 // voxels (one VolumeReplica per volume, fed by the haptic thread's
 // BlockChannels), drawing the newest haptic frame at its own rate with the
@@ -31,7 +31,7 @@ class Scene;
 class VolumeReplica;
 }  // namespace millsim
 
-namespace millsim::app {
+namespace millsim {
 
 class RunControls;
 
@@ -61,6 +61,8 @@ struct RunGraphicsStats {
   std::string gl;                          // GL version and renderer
   bool window = false;
   double firstFrameSeconds = 0.0;          // from start() to the first frame shown
+  int width = 0, height = 0;               // the frame's size
+  std::string screenshot;                  // where the last frame was written (empty: not asked for)
 };
 
 class RunGraphics {
@@ -110,4 +112,4 @@ private:
   RunGraphicsStats stats_;
 };
 
-}  // namespace millsim::app
+}  // namespace millsim

@@ -11,7 +11,7 @@
 
 #include "millsim/window/AppWindow.h"
 
-namespace millsim::app {
+namespace millsim {
 
 class RunControls {
 public:
@@ -48,4 +48,4 @@ private:
   bool closed_ = false;
 };
 
-}  // namespace millsim::app
+}  // namespace millsim

@@ -1,4 +1,4 @@
-#include "RunHud.h"
+#include "millsim/session/RunHud.h"
 
 #include <algorithm>
 
@@ -6,7 +6,7 @@
 
 #include "millsim/core/FieldValues.h"
 
-namespace millsim::app {
+namespace millsim {
 
 void HudFeed::add(const FrameRecord& r) {
   if (starts_.size() != compute_.size()) starts_.assign(compute_.size(), 0.0);
@@ -43,4 +43,4 @@ HudState HudFeed::state(const std::string& status) const {
   return h;
 }
 
-}  // namespace millsim::app
+}  // namespace millsim
