@@ -54,43 +54,42 @@ public:
 
   std::string name() const override { return "BarbicRenderer"; }
 
-  void reset(const Pose& device) override {
-    tool_ = isFinite(device) ? device : Pose{};
-    lastDevice_ = tool_;
-    toolVelocity_.setZero();
-    touched_ = false;
-    startFree_ = true;
-    cut_.reset(device.position);
+  void reset(const Pose& device) override { s_ = State::at(device); }
+
+  // The coupled tool stays where it was held, moving as it was: only the
+  // parameters change (a field applied live, a swap back to #3).
+  void carryOver(const HapticAlgorithm& previous) override {
+    if (const auto* p = dynamic_cast<const BarbicAlgorithm*>(&previous)) s_ = p->s_;
   }
 
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
     HapticOutput out;
     if (!isFinite(in.device)) {  // a bad pose changes nothing: hold the tool, feel nothing
-      out.drawnTool = tool_;
-      out.hasProxy = true, out.proxy = tool_.position, out.burrCentre = tool_.position, out.burrCuts = false;
+      out.drawnTool = s_.tool;
+      out.hasProxy = true, out.proxy = s_.tool.position, out.burrCentre = s_.tool.position, out.burrCuts = false;
       return out;
     }
     const Pose device{in.device.position, glm::normalize(in.device.orientation)};
     const double dt = in.dt > 1e-6 && std::isfinite(in.dt) ? in.dt : 1e-3;
     followMilling(scene);
-    if (startFree_) {  // the first frame after a reset: out of material along the axis (FreeStart.h)
-      startFree_ = false;
-      const glm::dvec3 axis = tool_.shaftDirection();
+    if (s_.startFree) {  // the first frame after a reset: out of material along the axis (FreeStart.h)
+      s_.startFree = false;
+      const glm::dvec3 axis = s_.tool.shaftDirection();
       const double h = scene.voxelSize();
-      const double s = firstFreeAlong([&](double d) { return penetrates({tool_.position + axis * d, tool_.orientation}); },
+      const double s = firstFreeAlong([&](double d) { return penetrates({s_.tool.position + axis * d, s_.tool.orientation}); },
                                       h, reach_ + reachTip_, 0.05 * h);
-      if (s > 0.0) tool_.position += axis * s;
+      if (s > 0.0) s_.tool.position += axis * s;
     }
 
     // 1–2. Contacts at the current tool pose, and the coupling spring.
     acc_.clear();
-    addCouplingSpring(acc_, p_.coupling, tool_, device);
+    addCouplingSpring(acc_, p_.coupling, s_.tool, device);
     out.contacts = gatherContacts(scene, out.flags);
 
     // 3. The 6×6 solve (quasi-static: net wrench zero after the step).
     Vec6 deviceVelocity;
-    const glm::dvec3 vd = (device.position - lastDevice_.position) / dt;
-    const glm::dvec3 wd = rotationError(lastDevice_.orientation, device.orientation) / dt;
+    const glm::dvec3 vd = (device.position - s_.lastDevice.position) / dt;
+    const glm::dvec3 wd = rotationError(s_.lastDevice.orientation, device.orientation) / dt;
     deviceVelocity << vd.x, vd.y, vd.z, wd.x, wd.y, wd.z;
     SolveResult solved = solveStep(acc_, p_.coupling, deviceVelocity, dt);
     Vec6 step = solved.step;
@@ -105,34 +104,34 @@ public:
     // 0.23 N). A tenth of a voxel: 0.038 N, the same removed volume.
     const double sweep = step.head<3>().norm() + step.tail<3>().norm() * reach_;
     const double limit =
-        out.contacts == 0 && touched_ ? std::min(p_.maxStep, kLostContactStepVoxels * scene.voxelSize()) : p_.maxStep;
+        out.contacts == 0 && s_.touched ? std::min(p_.maxStep, kLostContactStepVoxels * scene.voxelSize()) : p_.maxStep;
     if (sweep > limit && materialWithin(sweep)) step *= limit / sweep;
-    touched_ = out.contacts > 0;
-    tool_ = applyStep(tool_, step);
+    s_.touched = out.contacts > 0;
+    s_.tool = applyStep(s_.tool, step);
     Vec6 toolVelocity = step / dt;
-    if (!isFinite(tool_)) tool_ = device, toolVelocity.setZero();
+    if (!isFinite(s_.tool)) s_.tool = device, toolVelocity.setZero();
 
     // 4. What the user feels: the coupling between the new tool pose and the device.
     const glm::dvec3 vt(toolVelocity(0), toolVelocity(1), toolVelocity(2));
     const glm::dvec3 wt(toolVelocity(3), toolVelocity(4), toolVelocity(5));
-    out.force = p_.coupling.k * (tool_.position - device.position) + p_.coupling.b * (vt - vd);
-    out.torque = -p_.coupling.kr * rotationError(tool_.orientation, device.orientation) + p_.coupling.br * (wt - wd);
+    out.force = p_.coupling.k * (s_.tool.position - device.position) + p_.coupling.b * (vt - vd);
+    out.torque = -p_.coupling.kr * rotationError(s_.tool.orientation, device.orientation) + p_.coupling.br * (wt - wd);
     if (p_.rigidContact && out.contacts > 0) feelRigid(out);
-    out.drawnTool = tool_;
+    out.drawnTool = s_.tool;
     out.hasProxy = true;
-    out.proxy = tool_.position;
+    out.proxy = s_.tool.position;
     // Milling: free of contact the burr cuts where it is drawn; in contact
     // the cut front starts there and advances towards the device at the feed
     // speed |F| / (feedResistance · hardness), never past it. Not at the tool
     // itself: the coupled tool rests a penalty depth inside the surface, and
     // cutting there lets the surface recede by that depth every frame
     // whatever the force or tissue (docs/algorithms.md, "Tissue hardness").
-    out.burrCentre = cut_.step(scene, FeedLaw{p_.feedResistance, reachTip_}, tool_.position, device.position,
+    out.burrCentre = s_.cut.step(scene, FeedLaw{p_.feedResistance, reachTip_}, s_.tool.position, device.position,
                                out.contacts > 0, in.milling, glm::length(out.force), dt);
-    out.cutHardness = cut_.hardness();
+    out.cutHardness = s_.cut.hardness();
     out.burrCuts = true;
-    lastDevice_ = device;
-    toolVelocity_ = toolVelocity;
+    s_.lastDevice = device;
+    s_.toolVelocity = toolVelocity;
     sanitize(out, device);
     return out;
   }
@@ -226,7 +225,7 @@ private:
   // Penalty contacts of every shell point inside the tool, into acc_. Uses
   // the coarse shell when the fine one would exceed the budgets.
   int gatherContacts(HapticScene& scene, std::uint32_t& flags) {
-    const glm::dmat3 R = glm::mat3_cast(tool_.orientation), Rt = glm::transpose(R);
+    const glm::dmat3 R = glm::mat3_cast(s_.tool.orientation), Rt = glm::transpose(R);
     int contacts = 0;
     // The contacts are summed in the tool's frame, where the tool's distance
     // field gives them, and turned into the world once (addRotated): turning
@@ -239,10 +238,10 @@ private:
       const Shells& s = shells_[i];
       auto coarse = [&] { return &scene.pointShell(i, 2 * p_.scale); };
       const auto& v = *s.placement;
-      const Obb box = toolBox(v, tool_, 0.0);
+      const Obb box = toolBox(v, s_.tool, 0.0);
       // Volume-local point to the tool's frame in one affine map.
       const glm::dmat3 toTool = Rt * glm::dmat3(v.localToWorld);
-      const glm::dvec3 toToolOrigin = Rt * (glm::dvec3(v.localToWorld[3]) - tool_.position);
+      const glm::dvec3 toToolOrigin = Rt * (glm::dvec3(v.localToWorld[3]) - s_.tool.position);
       auto overlaps = [&](const Aabb& b) { return box.overlaps(b); };
       const PointShellQuery* shell = s.fine;
       // The fine shell's candidates, listed once for the budget and the visit.
@@ -319,7 +318,7 @@ private:
   // Whether any shell point lies within `margin` of the tool's box.
   bool materialWithin(double margin) const {
     for (const Shells& s : shells_) {
-      const Obb box = toolBox(*s.placement, tool_, margin);
+      const Obb box = toolBox(*s.placement, s_.tool, margin);
       if (s.fine->anyCandidate([&](const Aabb& b) { return box.overlaps(b); },
                                [&](const ShellPoint& p) { return box.contains(glm::dvec3(p.position)); }))
         return true;
@@ -376,11 +375,22 @@ private:
       parts_[i].weight += d;
     }
   }
-  Pose tool_, lastDevice_;
-  bool touched_ = false;  // the last step had contacts (a step that loses them all is held short)
-  bool startFree_ = true;  // the next step first moves a tool that starts in material out of it
-  Vec6 toolVelocity_ = Vec6::Zero();
-  CutFront cut_;  // where the burr cuts
+  // What moves frame to frame: a plain struct (a cross-fade copies it; a
+  // reset is a fresh one).
+  struct State {
+    Pose tool, lastDevice;
+    bool touched = false;    // the last step had contacts (a step that loses them all is held short)
+    bool startFree = true;   // the next step first moves a tool that starts in material out of it
+    Vec6 toolVelocity = Vec6::Zero();
+    CutFront cut;            // where the burr cuts
+    static State at(const Pose& device) {
+      State s;
+      s.tool = s.lastDevice = isFinite(device) ? device : Pose{};
+      s.cut.reset(device.position);
+      return s;
+    }
+  };
+  State s_;
 };
 
 }  // namespace

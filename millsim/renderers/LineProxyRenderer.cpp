@@ -64,10 +64,16 @@ public:
 
   LineProxyAlgorithm(const Params& p, int proxyIterations)
       : p_(p),
-        tip_(ProxyPoint::Params{proxyIterations, 2.0, p.burrSurface, p.burrSurface, p.burrSurface, p.burrSurface,
-                                p.burrSurface ? kBurrSlipVoxels : std::numeric_limits<double>::infinity(),
-                                p.burrSurface}),
-        shaft_(ProxyPoint::Params{proxyIterations, 2.0}),
+        tip_(ProxyPoint::Params{.slideIterations = proxyIterations,
+                                .maxSlideVoxels = 2.0,
+                                .recedeTowardsProbe = p.burrSurface,
+                                .refuseSinkingSlides = p.burrSurface,
+                                .slideAlongCreases = p.burrSurface,
+                                .descentOnly = p.burrSurface,
+                                .maxSlipVoxels = p.burrSurface ? kBurrSlipVoxels
+                                                               : std::numeric_limits<double>::infinity(),
+                                .leaveSaddles = p.burrSurface}),
+        shaft_(ProxyPoint::Params{.slideIterations = proxyIterations, .maxSlideVoxels = 2.0}),
         burr_(p.tool.tipRadius),
         before_(std::size_t(p.vertices)),
         after_(std::size_t(p.vertices)) {
@@ -97,36 +103,23 @@ public:
   void reset(const Pose& device) override {
     tip_.reset(device.position);
     shaft_.reset(device.position);
-    prevTip_ = device.position;
-    cutting_ = false;
-    prevDir_ = device.shaftDirection();
-    shaftContact_ = false;
-    shaftLine_ = ShaftLine{};
-    lastDrawn_ = device;
-    startFree_ = true;
+    s_ = State::at(device);
   }
 
   void carryOver(const HapticAlgorithm& previous) override {
     const auto* p = dynamic_cast<const LineProxyAlgorithm*>(&previous);
     if (!p) return;
     // The proxies stay where they were held; only the parameters change.
-    startFree_ = p->startFree_;
-    tip_.takeStateFrom(p->tip_);
-    shaft_.takeStateFrom(p->shaft_);
-    prevTip_ = p->prevTip_;
-    cutting_ = p->cutting_;
-    cutCentre_ = p->cutCentre_;
-    prevDir_ = p->prevDir_;
-    shaftContact_ = p->shaftContact_;
-    shaftLine_ = p->shaftLine_;
-    lastDrawn_ = p->lastDrawn_;
+    tip_.setState(p->tip_.state());
+    shaft_.setState(p->shaft_.state());
+    s_ = p->s_;
   }
 
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
     HapticOutput out;
     const Pose& device = in.device;
     if (!isFinite(device)) {
-      out.drawnTool = lastDrawn_;  // a bad pose changes nothing and draws the last good one
+      out.drawnTool = s_.lastDrawn;  // a bad pose changes nothing and draws the last good one
       return out;
     }
     out.drawnTool = device;
@@ -140,9 +133,9 @@ public:
     burr_.bind(scene);
     // The burr's proxy samples the scene within its radius and a couple of
     // voxels of where it is held: the scene keeps a dense copy of the voxels there.
-    scene.focus(startFree_ ? c : tip_.position(), p_.tool.tipRadius + 2.0 * scene.voxelSize());
-    if (startFree_) {  // the first frame after a reset: the tip's proxy out of material along the axis (FreeStart.h)
-      startFree_ = false;
+    scene.focus(s_.startFree ? c : tip_.position(), p_.tool.tipRadius + 2.0 * scene.voxelSize());
+    if (s_.startFree) {  // the first frame after a reset: the tip's proxy out of material along the axis (FreeStart.h)
+      s_.startFree = false;
       const double h = scene.voxelSize();
       auto inside = [&](double d) { return p_.burrSurface ? burr_.value(c + dir * d) > 0.0 : scene.inside(c + dir * d); };
       const double s = firstFreeAlong(inside, h, p_.tool.shaftLength + p_.tool.tipRadius, 0.05 * h);
@@ -207,7 +200,7 @@ public:
       // frame's feed and no more: 0.007 mm³ in the default lesson's milling.
       const double pushed = glm::length(proxyPoint - c);
       const glm::dvec3 n = pushed > 0.0 ? (proxyPoint - c) / pushed : tipNormal;
-      const double previous = cutting_ ? std::max(0.0, glm::dot(drawTip - cutCentre_, n)) : 0.0;
+      const double previous = s_.cutting ? std::max(0.0, glm::dot(drawTip - s_.cutCentre, n)) : 0.0;
       // Harder tissue at the burr's leading point gives way more slowly.
       const double hardness =
           scene.hardness(drawTip - n * (previous + p_.tool.tipRadius + 0.5 * scene.voxelSize()));
@@ -215,16 +208,16 @@ public:
       out.cutHardness = hardness;
       const double depth = std::min(previous + feed, glm::length(proxyPoint - c));
       out.burrCentre = drawTip - n * depth;
-      cutCentre_ = out.burrCentre;
-      cutting_ = true;
+      s_.cutCentre = out.burrCentre;
+      s_.cutting = true;
     } else {
-      cutting_ = false;
+      s_.cutting = false;
     }
 
-    prevTip_ = proxyPoint;
-    prevDir_ = dir;
+    s_.prevTip = proxyPoint;
+    s_.prevDir = dir;
     sanitize(out, device);
-    lastDrawn_ = out.drawnTool;
+    s_.lastDrawn = out.drawnTool;
     return out;
   }
 
@@ -248,19 +241,19 @@ private:
       }
     }
     if (colliding == 0) {
-      shaftContact_ = false;
-    } else if (!shaftContact_) {
+      s_.shaftContact = false;
+    } else if (!s_.shaftContact) {
       // §4.3.1: no collision at t−1: the fraction method along the motion.
       glm::dvec3 ip;
-      if (!firstContact(scene, prevTip_, prevDir_, proxyPoint, dir, ip)) ip = deepestVertex;
+      if (!firstContact(scene, s_.prevTip, s_.prevDir, proxyPoint, dir, ip)) ip = deepestVertex;
       shaft_.placeInContact(ip);
-      shaftContact_ = true;
+      s_.shaftContact = true;
     } else {
       // §4.3.2: collision at t−1: the deepest vertex is the probe of the
       // probe–proxy algorithm, the last intersection point its proxy.
       shaft_.update(scene, deepestVertex);
     }
-    if (!shaftContact_) return dir;
+    if (!s_.shaftContact) return dir;
     const glm::dvec3 ip = shaft_.position();
     const glm::dvec3 r = ip - proxyPoint;                                    // eq. 7
     const glm::dvec3 ipProbe = proxyPoint + glm::length(r) * dir;            // eq. 8
@@ -293,8 +286,8 @@ private:
     const double rho = p_.tool.shaftRadius;
     const ShaftLine& line = findShaftLine(scene, R, tip);
     const double depth = rho - line.t;
-    shaftContact_ = line.active && depth > 0.0;
-    if (!shaftContact_) return device.shaftDirection();
+    s_.shaftContact = line.active && depth > 0.0;
+    if (!s_.shaftContact) return device.shaftDirection();
     const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
     const glm::dvec3 point = tip + line.y * axis + line.t * w;  // on the material's surface
     // The burr's push (tip proxy − device) and the shaft's share one push as
@@ -315,7 +308,7 @@ private:
 
   // The shaft's deepest line with the burr centre at `tip` (the tool turned
   // by R): the tracked one searched near where it was, else seeded from the
-  // ring point deepest in material. Kept in shaftLine_ (active: within a
+  // ring point deepest in material. Kept in s_.shaftLine (active: within a
   // voxel of touching).
   const ShaftLine& findShaftLine(const HapticScene& scene, const glm::dmat3& R, const glm::dvec3& tip) {
     const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
@@ -327,18 +320,18 @@ private:
     };
     // The tracked line first, searched near where it was (tracking mode, t < rho).
     ShaftLine line;
-    if (shaftLine_.active) {
-      line = shaftLine_;
+    if (s_.shaftLine.active) {
+      line = s_.shaftLine;
       line.t = std::min(line.t, 0.999 * rho);
       line = refine(line);
       // holdWholeTool: the line keeps its angle unless turning gains more
       // than kShaftGain voxels of depth at its new height (the angle of the
       // whole tool's plane; docs/algorithms.md, Algorithm #1).
-      if (p_.wholeTool && line.active && line.t > 0.0 && line.phi != shaftLine_.phi) {
+      if (p_.wholeTool && line.active && line.t > 0.0 && line.phi != s_.shaftLine.phi) {
         const double kept = lineCrossing(scene, tip + std::clamp(line.y, shaftY0_, y1) * axis,
-                                          R * glm::dvec3(std::cos(shaftLine_.phi), 0.0, std::sin(shaftLine_.phi)),
+                                          R * glm::dvec3(std::cos(s_.shaftLine.phi), 0.0, std::sin(s_.shaftLine.phi)),
                                           line.t, -rho, rho + 4.0 * h);
-        if (kept - line.t < kShaftGain * h) line.phi = shaftLine_.phi, line.t = kept;
+        if (kept - line.t < kShaftGain * h) line.phi = s_.shaftLine.phi, line.t = kept;
       }
     }
     // Not touching: seed from the ring point deepest in material, if any.
@@ -360,8 +353,8 @@ private:
         if (seed.active && (!line.active || seed.t < line.t)) line = seed;
       }
     }
-    shaftLine_ = line;
-    return shaftLine_;
+    s_.shaftLine = line;
+    return s_.shaftLine;
   }
 
   // holdWholeTool: the shaft's deepest line where the tool rested last frame
@@ -391,9 +384,9 @@ private:
   glm::dvec3 shaftReaction(const HapticScene& scene, const glm::dmat3& R, const glm::dvec3& tip, HapticOutput& out) {
     const glm::dvec3 axis = R * glm::dvec3(0, 1, 0);
     const double tolerance = kTouch * scene.voxelSize();
-    shaftContact_ = tip_.inContact() && tool_.hasShaftPlane() && tool_.shaftDepth(tip) > -tolerance;
-    if (!shaftContact_) return axis;
-    const ShaftLine& line = shaftLine_;
+    s_.shaftContact = tip_.inContact() && tool_.hasShaftPlane() && tool_.shaftDepth(tip) > -tolerance;
+    if (!s_.shaftContact) return axis;
+    const ShaftLine& line = s_.shaftLine;
     const glm::dvec3 w = R * glm::dvec3(std::cos(line.phi), 0.0, std::sin(line.phi));
     const glm::dvec3 point = tip + line.y * axis + (p_.tool.shaftRadius - tool_.shaftDepth(tip)) * w;  // on the plane
     const glm::dvec3 ns = tool_.shaftNormal();
@@ -482,21 +475,33 @@ private:
   ProxyPoint shaft_;
   BurrField burr_;  // the scene dilated by the burr sphere (p_.burrSurface)
   WholeToolField tool_{burr_};  // burr_ and the shaft's plane of this frame (p_.wholeTool)
-  glm::dvec3 prevTip_{0.0};
-  bool cutting_ = false;        // the burr cut last frame, at cutCentre_
-  bool startFree_ = true;       // the next step first moves a tip proxy that starts in material out of it
-  glm::dvec3 cutCentre_{0.0};
-  glm::dvec3 prevDir_{0.0, 1.0, 0.0};
-  bool shaftContact_ = false;
+  // What moves frame to frame besides the two proxies: a plain struct (a
+  // cross-fade copies it; a reset is a fresh one).
+  struct State {
+    glm::dvec3 prevTip{0.0};
+    bool cutting = false;    // the burr cut last frame, at cutCentre
+    bool startFree = true;   // the next step first moves a tip proxy that starts in material out of it
+    glm::dvec3 cutCentre{0.0};
+    glm::dvec3 prevDir{0.0, 1.0, 0.0};
+    bool shaftContact = false;
+    ShaftLine shaftLine;
+    Pose lastDrawn;
+    static State at(const Pose& device) {
+      State s;
+      s.prevTip = device.position;
+      s.prevDir = device.shaftDirection();
+      s.lastDrawn = device;
+      return s;
+    }
+  };
+  State s_;
   static constexpr int kRing = 8;  // seeds round each centreline vertex
   struct RingSeed {
     double phi;
     glm::dvec3 local;  // (cos phi, 0, sin phi): the radial direction in the tool's frame
   };
   std::array<RingSeed, kRing> ring_{};
-  ShaftLine shaftLine_;
   double shaftY0_ = 0.0, shaftGrow_ = 0.0;
-  Pose lastDrawn_;
   std::vector<double> before_, after_;  // vertex values at search steps n−1 and n (preallocated)
 };
 
@@ -518,10 +523,16 @@ std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& 
                              "\": it models the burr as a sphere about its tip vertex; use shape \"round\", "
                              "or SurfacePointRenderer or BarbicRenderer");
   return std::make_unique<LineProxyAlgorithm>(
-      LineProxyAlgorithm::Params{vertexCount.get(), translationSteps.get(), rotationSteps.get(),
-                                 double(springConstant.get()), double(feedResistance.get()), tool,
-                                 feelBurrSurface.get(), feelShaftSurface.get(),
-                                 feelBurrSurface.get() && feelShaftSurface.get() && holdWholeTool.get()},
+      LineProxyAlgorithm::Params{
+          .vertices = vertexCount.get(),
+          .translationSteps = translationSteps.get(),
+          .rotationSteps = rotationSteps.get(),
+          .k = double(springConstant.get()),
+          .feedResistance = double(feedResistance.get()),
+          .tool = tool,
+          .burrSurface = feelBurrSurface.get(),
+          .shaftSurface = feelShaftSurface.get(),
+          .wholeTool = feelBurrSurface.get() && feelShaftSurface.get() && holdWholeTool.get()},
       proxyIterations.get());
 }
 

@@ -166,41 +166,41 @@ const glm::dvec3& ProxyPoint::update(const HapticScene& scene, const glm::dvec3&
 }
 
 const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& probe) {
-  if (!isFinite(probe)) return proxy_;
+  if (!isFinite(probe)) return s_.proxy;
   const double h = field.voxelSize();
   // This update's slides may add up to the probe's own motion since the last
   // one and maxSlipVoxels more (Params).
-  double slideLeft = glm::length(probe - lastProbe_) + params_.maxSlipVoxels * h;
-  lastProbe_ = probe;
+  double slideLeft = glm::length(probe - s_.lastProbe) + params_.maxSlipVoxels * h;
+  s_.lastProbe = probe;
   glm::dvec3 entry;
-  if (!inContact_) {
-    if (field.value(proxy_) > 0.0) {
+  if (!s_.inContact) {
+    if (field.value(s_.proxy) > 0.0) {
       // The proxy was never outside: there is no surface to hold it to, so
       // follow the probe without force. (A renderer that starts its tool in
       // material puts the proxy out first, where it wants a force: #1's tip,
       // FreeStart.h.)
-      proxy_ = probe;
-      return proxy_;
+      s_.proxy = probe;
+      return s_.proxy;
     }
     // Free motion, unless the way from the proxy to the probe enters material
     // (even if the probe has already come out on the far side of a thin wall).
-    if (!findEntry(field, proxy_, probe, entry)) {
-      proxy_ = probe;
-      return proxy_;
+    if (!findEntry(field, s_.proxy, probe, entry)) {
+      s_.proxy = probe;
+      return s_.proxy;
     }
-    proxy_ = entry;
-    inContact_ = true;
-  } else if (field.value(probe) <= 0.0 && !findEntry(field, proxy_, probe, entry)) {
+    s_.proxy = entry;
+    s_.inContact = true;
+  } else if (field.value(probe) <= 0.0 && !findEntry(field, s_.proxy, probe, entry)) {
     // The probe is back outside and nothing lies between: released.
-    proxy_ = probe;
-    inContact_ = false;
-    return proxy_;
-  } else if (params_.recedeTowardsProbe && field.value(proxy_) < 0.0) {
+    s_.proxy = probe;
+    s_.inContact = false;
+    return s_.proxy;
+  } else if (params_.recedeTowardsProbe && field.value(s_.proxy) < 0.0) {
     // Milling removed the material the proxy rested on: like a god object, it
     // moves straight towards the probe until it meets material again (not
     // along the field's gradient, which in the burr's own round pit points at
     // whichever point of the rim happens to be deepest: a sideways drift).
-    if (findEntry(field, proxy_, probe, entry)) proxy_ = entry;
+    if (findEntry(field, s_.proxy, probe, entry)) s_.proxy = entry;
   }
   glm::dvec3 previousNormal(0.0);  // the face the last slide was held by
   // Params::leaveSaddles: a stalled slide on a saddle's ridge goes off it,
@@ -210,14 +210,14 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     glm::dvec3 off;
     if (!params_.leaveSaddles || leftSaddle || !field.maySaddle(probe) || !saddleExit(field, probe, n, off)) return false;
     leftSaddle = true;
-    slideLeft -= glm::length(off - proxy_);
-    proxy_ = off;
+    slideLeft -= glm::length(off - s_.proxy);
+    s_.proxy = off;
     return true;
   };
   for (int it = 0; it < params_.slideIterations; ++it) {
-    const glm::dvec3 n = field.contactNormal(proxy_);
+    const glm::dvec3 n = field.contactNormal(s_.proxy);
     if (n == glm::dvec3(0.0)) break;  // no gradient (homogeneous material): stay put
-    const glm::dvec3 delta = probe - proxy_;
+    const glm::dvec3 delta = probe - s_.proxy;
     // Remove the component that would push the proxy into the material.
     glm::dvec3 move = delta - std::min(glm::dot(delta, n), 0.0) * n;
     // In a crease (a hole's floor and wall) a slide along one face runs into
@@ -238,12 +238,12 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     const double maxStep = params_.maxSlideVoxels * h, longest = std::min(maxStep, slideLeft);
     if (!(longest > 1e-3 * h)) break;  // this update's slides are spent
     if (len > longest) move *= longest / len;
-    glm::dvec3 next = field.projectToSurface(proxy_ + move, maxStep);
+    glm::dvec3 next = field.projectToSurface(s_.proxy + move, maxStep);
     for (int k = 0; params_.refuseSinkingSlides && k < 4 && isFinite(next) && field.value(next) > 0.0 &&
                     field.outwardNormal(next) == glm::dvec3(0.0);
          ++k) {
       move *= 0.5;
-      next = field.projectToSurface(proxy_ + move, maxStep);
+      next = field.projectToSurface(s_.proxy + move, maxStep);
     }
     if (!isFinite(next)) break;
     if (params_.refuseSinkingSlides && field.value(next) > 0.0 && field.outwardNormal(next) == glm::dvec3(0.0))
@@ -254,10 +254,10 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
     // the §8.2 procedure, to no effect on the physical suite; none at all
     // left the burr's proxy on the side of its own pit, milling half as much.
     if (params_.descentOnly) {
-      const double before = glm::length(probe - proxy_), gain = 1e-3 * h;
+      const double before = glm::length(probe - s_.proxy), gain = 1e-3 * h;
       for (int k = 0; k < 2 && isFinite(next) && !(glm::length(probe - next) < before - gain); ++k) {
         move *= 0.5;
-        next = field.projectToSurface(proxy_ + move, maxStep);
+        next = field.projectToSurface(s_.proxy + move, maxStep);
       }
       if (!isFinite(next) || !(glm::length(probe - next) < before - gain)) {  // no nearer point: stay,
         if (!leaveSaddle(n)) break;                                             // unless on a saddle
@@ -265,15 +265,15 @@ const glm::dvec3& ProxyPoint::update(const ProxyField& field, const glm::dvec3& 
       }
     }
     slideLeft -= glm::length(move);
-    proxy_ = next;
+    s_.proxy = next;
   }
   // Milling may have removed the material under the proxy: follow the
   // receding surface towards the probe.
-  if (!params_.recedeTowardsProbe && field.value(proxy_) < 0.0) {
-    const glm::dvec3 next = field.projectToSurface(proxy_, params_.maxSlideVoxels * h);
-    if (isFinite(next) && glm::dot(next - proxy_, probe - proxy_) > 0.0) proxy_ = next;
+  if (!params_.recedeTowardsProbe && field.value(s_.proxy) < 0.0) {
+    const glm::dvec3 next = field.projectToSurface(s_.proxy, params_.maxSlideVoxels * h);
+    if (isFinite(next) && glm::dot(next - s_.proxy, probe - s_.proxy) > 0.0) s_.proxy = next;
   }
-  return proxy_;
+  return s_.proxy;
 }
 
 bool ProxyPoint::saddleExit(const ProxyField& field, const glm::dvec3& probe, const glm::dvec3& n,
@@ -288,10 +288,10 @@ bool ProxyPoint::saddleExit(const ProxyField& field, const glm::dvec3& probe, co
   // gain 6 µm there, while a ball or a bowl, curving less than the distance
   // to the probe, rises by tens of µm.
   const double step = params_.maxSlideVoxels * h;
-  double best = glm::length(probe - proxy_) - 0.02 * h;
+  double best = glm::length(probe - s_.proxy) - 0.02 * h;
   bool found = false;
   for (const glm::dvec3& t : {t1, -t1, t2, -t2}) {
-    const glm::dvec3 c = field.projectToSurface(proxy_ + step * t, step);
+    const glm::dvec3 c = field.projectToSurface(s_.proxy + step * t, step);
     if (!isFinite(c) || (field.value(c) > 0.0 && field.outwardNormal(c) == glm::dvec3(0.0))) continue;
     const double d = glm::length(probe - c);
     if (d < best) best = d, exit = c, found = true;

@@ -151,31 +151,33 @@ public:
     // burr slides onto a face (the physical suite's edge: 22° off).
     bool leaveSaddles = false;
   };
+  // What moves frame to frame: a plain struct, so that a renderer taking
+  // over (a cross-fade) copies it and a reset is a fresh one.
+  struct State {
+    glm::dvec3 proxy{0.0};
+    glm::dvec3 lastProbe{0.0};  // the probe of the last update (for maxSlipVoxels)
+    bool inContact = false;
+    static State at(const glm::dvec3& p) { return State{p, p, false}; }
+  };
   ProxyPoint() = default;
   explicit ProxyPoint(Params p) : params_(p) {}
 
-  void reset(const glm::dvec3& at) {
-    proxy_ = lastProbe_ = at;
-    inContact_ = false;
-  }
+  void reset(const glm::dvec3& at) { s_ = State::at(at); }
   // Puts the proxy on the surface at a known contact point (Algorithm #1's
   // first shaft intersection).
   void placeInContact(const glm::dvec3& onSurface) {
-    proxy_ = onSurface;
-    inContact_ = true;
+    s_.proxy = onSurface;
+    s_.inContact = true;
   }
   // Moves the proxy for a new probe position; returns the new proxy.
   const glm::dvec3& update(const ProxyField& field, const glm::dvec3& probe);
   // The same on the scene's surface s(p).
   const glm::dvec3& update(const HapticScene& scene, const glm::dvec3& probe);
   // Where `other` is and whether it touches, keeping this one's parameters (a live retune).
-  void takeStateFrom(const ProxyPoint& other) {
-    proxy_ = other.proxy_;
-    lastProbe_ = other.lastProbe_;
-    inContact_ = other.inContact_;
-  }
-  const glm::dvec3& position() const { return proxy_; }
-  bool inContact() const { return inContact_; }
+  const State& state() const { return s_; }
+  void setState(const State& s) { s_ = s; }
+  const glm::dvec3& position() const { return s_.proxy; }
+  bool inContact() const { return s_.inContact; }
 
 private:
   // Where the segment from → to first enters material (half-voxel steps,
@@ -186,9 +188,7 @@ private:
   bool saddleExit(const ProxyField& field, const glm::dvec3& probe, const glm::dvec3& n, glm::dvec3& exit) const;
 
   Params params_;
-  glm::dvec3 proxy_{0.0};
-  glm::dvec3 lastProbe_{0.0};  // the probe of the last update (for maxSlipVoxels)
-  bool inContact_ = false;
+  State s_;
 };
 
 }  // namespace millsim

@@ -32,8 +32,8 @@ class SurfacePointAlgorithm final : public HapticAlgorithm {
 public:
   SurfacePointAlgorithm(const ToolGeometry& tool, int sphereVertices, int slices, int perSlice, double k,
                         double feedResistance, bool deepest)
-      : k_(k), headReach_(tool.head().boundingRadius()), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice),
-        heldSlice_(std::size_t(slices), glm::dvec3(0.0)) {
+      : k_(k), headReach_(tool.head().boundingRadius()), feed_{feedResistance, tool.tipRadius}, perSlice_(perSlice) {
+    s_.heldSlice.assign(std::size_t(slices), glm::dvec3(0.0));
     // Sphere: a Fibonacci lattice spreads any number of points evenly.
     const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
     if (tool.round()) {
@@ -60,36 +60,24 @@ public:
 
   std::string name() const override { return "SurfacePointRenderer"; }
 
-  void reset(const Pose& device) override {
-    lastDrawn_ = device;
-    cut_.reset(device.position);
-    heldSphere_ = glm::dvec3(0.0);
-    std::fill(heldSlice_.begin(), heldSlice_.end(), glm::dvec3(0.0));
-    tracked_ = 0;
-    heldHead_ = PointContact{};
-    fresh_ = true;
-  }
+  void reset(const Pose& device) override { s_.resetAt(device); }
 
   void carryOver(const HapticAlgorithm& previous) override {
     const auto* p = dynamic_cast<const SurfacePointAlgorithm*>(&previous);
-    if (!p || p->heldSlice_.size() != heldSlice_.size() || !(p->k_ > 0.0) || p->deepest_ != deepest_) return;
-    // The held forces are k · (penetration at entry): the same entry, the new k.
+    if (!p || p->s_.heldSlice.size() != s_.heldSlice.size() || !(p->k_ > 0.0) || p->deepest_ != deepest_) return;
+    s_ = p->s_;  // the same size: no allocation
+    // The held forces are k · (penetration at entry): the same entry, the
+    // new k. The contacts are geometry: the same whatever k.
     const double scale = k_ / p->k_;
-    lastDrawn_ = p->lastDrawn_;
-    cut_ = p->cut_;
-    heldSphere_ = p->heldSphere_ * scale;
-    for (std::size_t j = 0; j < heldSlice_.size(); ++j) heldSlice_[j] = p->heldSlice_[j] * scale;
-    tracked_ = p->tracked_;  // the contacts are geometry: the same whatever k
-    std::copy(p->track_, p->track_ + kMaxPointContacts, track_);
-    heldHead_ = p->heldHead_;
-    fresh_ = p->fresh_;
+    s_.heldSphere *= scale;
+    for (glm::dvec3& f : s_.heldSlice) f *= scale;
   }
 
   HapticOutput step(HapticScene& scene, const HapticInput& in) override {
     HapticOutput out;
     const Pose& device = in.device;
     if (!isFinite(device)) {
-      out.drawnTool = lastDrawn_;  // a bad pose changes nothing and draws the last good one
+      out.drawnTool = s_.lastDrawn;  // a bad pose changes nothing and draws the last good one
       return out;
     }
     out.drawnTool = device;
@@ -106,7 +94,7 @@ public:
 
     // Eq. 14–17: the burr sphere.
     if (scene.inside(c)) {
-      out.force = heldSphere_;  // eq. 17: past half immersion the sum would shrink and flip
+      out.force = s_.heldSphere;  // eq. 17: past half immersion the sum would shrink and flip
       out.flags |= kFlagHeldForce;
     } else {
       glm::dvec3 f(0.0);
@@ -124,7 +112,7 @@ public:
         ++out.contacts;
       }
       out.force = k_ * f / double(sphere_.size());  // eq. 14, summed (eq. 16)
-      heldSphere_ = out.force;
+      s_.heldSphere = out.force;
     }
 
     // Eq. 18–21: slices of the shaft.
@@ -133,7 +121,7 @@ public:
       const glm::dvec3 centre = c + axis * sliceY_[j];
       glm::dvec3 reaction(0.0);
       if (scene.inside(centre)) {
-        reaction = heldSlice_[j];  // eq. 19
+        reaction = s_.heldSlice[j];  // eq. 19
         out.flags |= kFlagHeldForce;
       } else {
         for (const glm::dvec3& offset : ring_) {
@@ -143,7 +131,7 @@ public:
           ++out.contacts;
         }
         reaction *= k_ / double(perSlice_);  // eq. 14's weighting, per slice (eq. 18)
-        heldSlice_[j] = reaction;
+        s_.heldSlice[j] = reaction;
       }
       out.torque += glm::cross(centre - c, reaction) / double(sliceY_.size());  // eq. 20–21
     }
@@ -189,13 +177,13 @@ private:
     // (about half the burr's points collide there).
     const bool touching = out.contacts > 0 || (out.flags & kFlagHeldForce) != 0;
     double push = glm::length(out.force);
-    if (touching && !(push > 0.0) && scene.inside(c)) push = (deepest_ ? 1.0 : 0.5) * k_ * glm::length(c - cut_.centre());
-    cut_.step(scene, feed_, c, c, touching, in.milling, push, in.dt);
-    out.burrCentre = cut_.centre();
-    out.cutHardness = cut_.hardness();
+    if (touching && !(push > 0.0) && scene.inside(c)) push = (deepest_ ? 1.0 : 0.5) * k_ * glm::length(c - s_.cut.centre());
+    s_.cut.step(scene, feed_, c, c, touching, in.milling, push, in.dt);
+    out.burrCentre = s_.cut.centre();
+    out.cutHardness = s_.cut.hardness();
     sanitize(out, device);
-    lastDrawn_ = out.drawnTool;
-    fresh_ = false;
+    s_.lastDrawn = out.drawnTool;
+    s_.fresh = false;
     return out;
   }
 
@@ -278,27 +266,27 @@ private:
       // (headPoints), the deepest one's length along their sum; held while
       // the centre is inside (eq. 17).
       PointContact head;
-      if (scene.inside(c)) out.flags |= kFlagHeldForce, head = heldHead_;
+      if (scene.inside(c)) out.flags |= kFlagHeldForce, head = s_.heldHead;
       else head = headContact(scene, c, R, h);
       Track t;
-      if (add(t, head)) heldHead_ = head;
-      else heldHead_ = PointContact{};
+      if (add(t, head)) s_.heldHead = head;
+      else s_.heldHead = PointContact{};
     } else if (scene.inside(c)) {
       // Past half immersion the burr's lines would find the far side: keep
       // the last direction (eq. 17 holds the whole force) and measure along it.
       out.flags |= kFlagHeldForce;
       Track t;
-      for (int j = 0; j < tracked_; ++j)
-        if (!track_[j].shaft) {
-          t = track_[j];
+      for (int j = 0; j < s_.tracked; ++j)
+        if (!s_.track[j].shaft) {
+          t = s_.track[j];
           break;
         }
-      if (t.u == glm::dvec3(0.0) && glm::length(c - cut_.centre()) > 0.0)
-        t.u = glm::normalize(c - cut_.centre()), t.normal = -t.u, t.t = 0.0;
+      if (t.u == glm::dvec3(0.0) && glm::length(c - s_.cut.centre()) > 0.0)
+        t.u = glm::normalize(c - s_.cut.centre()), t.normal = -t.u, t.t = 0.0;
       // The first frame after a reset inside material (a run that starts
       // there, or a swap mid-press): no line to hold. The burr came in along
       // its axis, the way it comes out of the hole it is in (FreeStart.h).
-      if (t.u == glm::dvec3(0.0) && fresh_) {
+      if (t.u == glm::dvec3(0.0) && s_.fresh) {
         const glm::dvec3 axis = R * glm::dvec3(0.0, 1.0, 0.0);
         t.u = -axis, t.normal = axis, t.t = 0.0;
       }
@@ -324,9 +312,9 @@ private:
       };
       Track t;
       int firstTracked = -1;
-      for (int j = 0; j < tracked_; ++j)
-        if (!track_[j].shaft) {
-          t = tracked(track_[j]), firstTracked = j;  // in contact: from the last frame's first line
+      for (int j = 0; j < s_.tracked; ++j)
+        if (!s_.track[j].shaft) {
+          t = tracked(s_.track[j]), firstTracked = j;  // in contact: from the last frame's first line
           break;
         }
       if (t.u == glm::dvec3(0.0) && scene.mayHaveMaterialNear(c, r_ + sphereGrow_)) {
@@ -345,9 +333,9 @@ private:
       // last frame's again, then any new one. Found afresh each frame they
       // came and went with the seeds, 0.07 mm deep, while the burr milled
       // its own pit.
-      for (int j = firstTracked + 1; firstTracked >= 0 && j < tracked_; ++j)
-        if (!track_[j].shaft) {
-          Track face = tracked(track_[j]);
+      for (int j = firstTracked + 1; firstTracked >= 0 && j < s_.tracked; ++j)
+        if (!s_.track[j].shaft) {
+          Track face = tracked(s_.track[j]);
           add(face, burrContact(scene, c, face));
         }
       seedBurr = true;
@@ -355,8 +343,8 @@ private:
     // Every tracked contact before any new one: a new face of the burr's
     // took the last place from the leaning shaft's contact, 67 µm deep, in
     // the §8.2 replay (0.17 N in one frame).
-    for (int j = 0; j < tracked_; ++j)
-      if (track_[j].shaft) shaft(track_[j]);
+    for (int j = 0; j < s_.tracked; ++j)
+      if (s_.track[j].shaft) shaft(s_.track[j]);
     if (seedBurr)
       seed(scene, c, R, found, contacts, n, false, [&](std::size_t i) {
         Track face;
@@ -397,8 +385,8 @@ private:
       out.force += f;
       out.torque += glm::cross(contacts[j].point - c, f);
     }
-    tracked_ = n;
-    std::copy(found, found + n, track_);
+    s_.tracked = n;
+    std::copy(found, found + n, s_.track);
   }
 
   // A second face of the burr's is a face only more than 60° from its first
@@ -583,7 +571,6 @@ private:
   double k_;
   double headReach_;  // the burr's points lie within this of its centre (m)
   FeedLaw feed_;
-  CutFront cut_;  // where the burr cuts
   int perSlice_;
   std::vector<glm::dvec3> sphere_, ring_;  // sphere_: the head's points (a sphere for the round burr)
   std::vector<glm::dvec3> target_;  // a non-round head's points: where each one's penetration is measured towards
@@ -591,14 +578,29 @@ private:
   bool deepest_ = false;
   double r_ = 0.0, rho_ = 0.0, y0_ = 0.0, y1_ = 0.0, sphereGrow_ = 0.0, shaftGrow_ = 0.0;
   std::vector<char> inside_;  // per surface point: in material on the grown surface (sized at compile)
-  Track track_[kMaxPointContacts];
-  int tracked_ = 0;
-  bool fresh_ = true;  // no step since the last reset (a burr centre inside then holds along the axis)
-  PointContact heldHead_;  // a non-round head's last contact (held while its centre is inside)
   std::vector<double> sliceY_;
-  glm::dvec3 heldSphere_{0.0};
-  Pose lastDrawn_;
-  std::vector<glm::dvec3> heldSlice_;
+  // What moves frame to frame: a plain struct (a cross-fade copies it; its
+  // vector is sized at compile, so neither a copy nor a reset allocates).
+  struct State {
+    Pose lastDrawn;
+    CutFront cut;  // where the burr cuts
+    glm::dvec3 heldSphere{0.0};
+    std::vector<glm::dvec3> heldSlice;
+    Track track[kMaxPointContacts];
+    int tracked = 0;
+    PointContact heldHead;  // a non-round head's last contact (held while its centre is inside)
+    bool fresh = true;      // no step since the last reset (a burr centre inside then holds along the axis)
+    void resetAt(const Pose& device) {
+      lastDrawn = device;
+      cut.reset(device.position);
+      heldSphere = glm::dvec3(0.0);
+      std::fill(heldSlice.begin(), heldSlice.end(), glm::dvec3(0.0));
+      tracked = 0;
+      heldHead = PointContact{};
+      fresh = true;
+    }
+  };
+  State s_;
 };
 
 }  // namespace

@@ -4,7 +4,10 @@
 #include "TestFiles.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/core/Plugin.h"
+#include "millsim/session/Session.h"
 #include "millsim/x3d/X3DLoader.h"
+
+#include <algorithm>
 
 using namespace millsim;
 using millsim::test::ScratchDir;
@@ -110,4 +113,39 @@ TEST(Plugins, EnvironmentSearchPathIsColonSeparated) {
   unsetenv("MILLSIM_PLUGIN_PATH");
   ASSERT_EQ(dirs.size(), 3u);
   EXPECT_EQ(dirs[1], "/b/c");
+}
+
+// A plugin's renderer (SpherePenaltyRenderer, tests/plugin) takes a device's
+// hapticsRenderer like a built-in one: it pushes the burr out of the tooth,
+// mills it, and a live run prepares it beside the built-in ones.
+TEST(Plugins, APluginRendererRendersAndMillsThroughASession) {
+  ScratchDir dir;
+  (void)dir.write("press.csv", "t,x,y,z,qw,qx,qy,qz,button\n0,0,0.0125,0,1,0,0,0,0\n"
+                                                  "0.4,0,0.0088,0,1,0,0,0,0\n0.41,0,0.0088,0,1,0,0,0,1\n"
+                                                  "0.6,0,0.0085,0,1,0,0,0,1\n");
+  auto scene = dir.write("s.x3d", x3d(R"(<ImportLibrary url='"libmillsim_sample_plugin.so"'/>
+<VolumeObject url='"phantom:tooth"' isoValue="700"/>
+<TrajectoryDevice url='"press.csv"'>
+  <MillTool tipRadius="0.0006" shaftRadius="0.0004" shaftLength="0.015"/>
+  <SpherePenaltyRenderer stiffness="800"/>
+</TrajectoryDevice>)"));
+  auto r = loadSceneFile(scene, builtinRegistry(), withSearchPath({kPluginDir}));
+  ASSERT_TRUE(r.ok()) << r.report();
+  SessionOptions options;
+  options.prepareRenderers = true;
+  auto session = Session::openDevice(*r.scene, options);
+  EXPECT_EQ(session->rendererName(), "SpherePenaltyRenderer");
+  const auto prepared = session->preparedRenderers();
+  EXPECT_NE(std::find(prepared.begin(), prepared.end(), "SpherePenaltyRenderer"), prepared.end());
+  EXPECT_EQ(prepared.size(), 4u) << "the three built-in renderers and the plugin's";
+  double pressing = 0.0;  // the largest upward force before the burr spins
+  session->observe([&](const FrameRecord& f) {
+    if (!f.button) pressing = std::max(pressing, f.force.y);
+  });
+  while (session->stepSimulated() && session->loop().stats().frames < 600) {
+  }
+  const SessionResult s = session->finish();
+  EXPECT_GT(s.stats.contactFrames, 0);
+  EXPECT_GT(pressing, 0.1) << "pressed into the occlusal surface, it pushes up (N)";
+  EXPECT_GT(s.stats.removedVolume, 0.0) << "and the burr mills";
 }
