@@ -37,7 +37,8 @@ void printRunSummary(std::ostream& os, const SessionResult& r) {
      << s.safety.nonFinite << "; device: sequence gaps " << s.device.sequenceGaps << ", checksum errors "
      << s.device.checksumErrors << "; log records dropped " << s.recordsDropped << "\n";
   os << "  real-time priority: "
-     << (s.realTimePriority ? "SCHED_FIFO"
+     << (s.deviceServo        ? "the device library's own servo thread"
+         : s.realTimePriority ? "SCHED_FIFO"
                             : "not granted (normal priority); to grant it, raise the rtprio limit (ulimit -r 99, or "
                               "'@audio - rtprio 99' in /etc/security/limits.conf) or give the binary CAP_SYS_NICE "
                               "(setcap cap_sys_nice+ep millsim)")

@@ -1,8 +1,9 @@
 #pragma once
 // AnyDevice: H3DAPI's "whatever device there is", for scenes written for
 // H3DAPI and for lessons that should run on any desk: an attached ARES
-// (found as AresDevice finds it), else the mouse in the window of `millsim
-// run` (as MouseDevice), else an error that says what was tried. Replay and
+// (found as AresDevice finds it), else an OpenHaptics device (as
+// PhantomDevice opens the default one), else the mouse in the window of
+// `millsim run` (as MouseDevice), else an error that says what was tried. Replay and
 // render play its trajectory open loop, as for any hardware device. Its
 // fields are AresDevice's (AresUsbFields) and MouseDevice's
 // (MousePointerFields), each group declared once and opened by the same code.
@@ -23,21 +24,22 @@ public:
   AnyDevice() : AresUsbFields(this), MousePointerFields(this) {}
 
   SFString openedDevice{this, "openedDevice", Access::OutputOnly, "",
-                        "Which device the last run opened: AresDevice or MouseDevice."};
+                        "Which device the last run opened: AresDevice, PhantomDevice or MouseDevice."};
 
-  // Tries the ARES, then the mouse (options.pointer); DeviceError naming both otherwise.
+  // Tries the ARES, OpenHaptics, then the mouse (options.pointer); DeviceError naming each otherwise.
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
   // The ARES's, whichever it opens: the mouse's output goes nowhere, and a
   // review of the run, which opens nothing, repeats the same decisions.
   double outputHoldTime() const override;
   std::optional<PointerStart> pointerStart() const override { return PointerStart{startPose(), depthStep.get()}; }
-  // After openDriver: whether it follows the mouse (no ARES was found).
-  bool followsPointer() const override { return followsMouse_; }
+  // After openDriver: whether it follows the mouse (no other device was found).
+  bool followsPointer() const override { return opened_ == Opened::Mouse; }
   // Sets openedDevice and says which device it found.
   std::string noteOpened() override;
 
 private:
-  mutable bool followsMouse_ = false;
+  enum class Opened { Nothing, Ares, OpenHaptics, Mouse };
+  mutable Opened opened_ = Opened::Nothing;
 };
 
 }  // namespace millsim

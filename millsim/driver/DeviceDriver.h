@@ -8,6 +8,7 @@
 // node's calibration (HapticsDevice::positionCalibration/orientationCalibration)
 // on the way in and its inverse rotation on the way out.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,18 @@ public:
   // frame, on the thread that ran the loop; must be safe after a failure.
   virtual void stop() {}
   virtual DeviceCounters counters() const { return {}; }
+
+  // A device whose library runs the servo loop itself (OpenHaptics'
+  // scheduler calls back once per device tick): the haptic loop then starts
+  // no thread of its own but hands `frame` to startServo. `frame` is one
+  // haptic frame (read, step, write) and returns false when the run is over;
+  // the driver then unschedules it. stopServo (scene thread, after the last
+  // frame or when the library stopped calling) stops the library's loop and
+  // releases the device; idempotent. Devices MillSim polls (ARES, the
+  // simulated ones) keep the defaults.
+  virtual bool ownsServoLoop() const { return false; }
+  virtual void startServo(std::function<bool()> frame) { (void)frame; }
+  virtual void stopServo() {}
 };
 
 }  // namespace millsim

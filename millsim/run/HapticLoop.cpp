@@ -263,13 +263,36 @@ void HapticLoop::stepSimulatedAfter(double period) {
 }
 
 void HapticLoop::start(double duration) {
-  if (thread_.joinable()) throw std::logic_error("HapticLoop::start: already running");
+  if (thread_.joinable() || driverServo_) throw std::logic_error("HapticLoop::start: already running");
   finished_.store(false, std::memory_order_release);
+  if (driver_->ownsServoLoop()) {
+    startServo(duration);
+    driverServo_ = true;
+    stats_.deviceServo = true;
+    driver_->startServo([this] { return servoFrame(); });
+    return;
+  }
   thread_ = std::thread([this, duration] { runRealTime(duration); });
 }
 
 void HapticLoop::join() {
   if (thread_.joinable()) thread_.join();
+  if (!driverServo_) return;
+  const auto until = Clock::now() + std::chrono::seconds(2);
+  while (!finished() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  driver_->stopServo();  // no more calls after this
+  if (!finished()) {
+    if (failure_.empty()) failure_ = "the device's servo loop stopped calling before the run ended";
+    endTimedRun();
+  }
+  driverServo_ = false;
+}
+
+bool HapticLoop::servoSilentFor(double seconds) const {
+  const auto now = Clock::now().time_since_epoch();
+  const std::int64_t last = lastServoNs_.load(std::memory_order_relaxed);
+  if (last == 0) return false;  // not a servo-driven run
+  return !finished() && std::chrono::nanoseconds(now).count() - last > std::int64_t(seconds * 1e9);
 }
 
 void HapticLoop::runRealTime(double duration) {
@@ -326,12 +349,14 @@ void HapticLoop::startServo(double duration) {
   if (thread_.joinable()) throw std::logic_error("HapticLoop::startServo: its own thread is running");
   duration_ = duration;
   servoOver_ = false;
+  lastServoNs_.store(std::chrono::nanoseconds(Clock::now().time_since_epoch()).count(), std::memory_order_relaxed);
   finished_.store(false, std::memory_order_release);
 }
 
 bool HapticLoop::servoFrame() {
   if (servoOver_) return false;
   const auto now = Clock::now();
+  lastServoNs_.store(std::chrono::nanoseconds(now.time_since_epoch()).count(), std::memory_order_relaxed);
   if (nextFrame_ == 0) clockStart_ = now;
   // The library's scheduler keeps the time; a tick later than half a period is a missed deadline.
   else if (microseconds(now - previousFrame_) > 1.5e6 / settings_.rate) ++stats_.missedDeadlines;

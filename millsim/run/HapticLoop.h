@@ -96,6 +96,7 @@ struct LoopStats {
   DeviceCounters device;
   std::uint64_t recordsDropped = 0;
   bool realTimePriority = false;  // SCHED_FIFO was granted
+  bool deviceServo = false;       // the device library's servo thread ran the frames (its priority is the library's)
 
   double meanRate() const { return elapsed > 0.0 && frames > 1 ? double(frames - 1) / elapsed : 0.0; }
   // The rate that 99 % of frames met or beat: 1 / (99th-percentile period).
@@ -133,6 +134,8 @@ public:
   double frameDt(double periodUs) const;
   // Real time on a new thread, until `duration` seconds have passed, stop()
   // is called, or the device fails. Returns at once.
+  // A driver whose library owns the servo loop (DeviceDriver::ownsServoLoop)
+  // gets servoFrame() to call instead: no thread of MillSim's runs.
   void start(double duration);
   // A servo loop another library owns: startServo() on the scene thread,
   // then servoFrame() once per device tick on that library's thread, which
@@ -143,7 +146,13 @@ public:
   // (the device released) and later calls do nothing.
   void startServo(double duration);
   bool servoFrame();
+  // A servo loop that has made no frame for `seconds` (since startServo, or
+  // since its last frame) while the run is not over: its library stopped
+  // calling. Any thread; wait-free.
+  bool servoSilentFor(double seconds) const;
   void stop() { stopRequested_.store(true, std::memory_order_relaxed); }
+  // Waits for the run's end (a run the driver's servo loop drives: up to 2 s
+  // after stop(), then its loop is stopped and the device released here).
   void join();
   bool finished() const { return finished_.load(std::memory_order_acquire); }
   // Zeroes the device's output and releases it. The real-time thread does
@@ -263,6 +272,9 @@ private:
   std::chrono::steady_clock::time_point clockStart_, previousFrame_;
   double duration_ = 0.0;
   bool servoOver_ = false;
+  bool driverServo_ = false;  // the driver's library calls servoFrame
+  // Steady-clock nanoseconds of the last servo frame (or startServo): servoSilentFor.
+  std::atomic<std::int64_t> lastServoNs_{0};
 
   std::thread thread_;
   std::atomic<bool> stopRequested_{false};

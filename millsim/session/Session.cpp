@@ -36,6 +36,8 @@ double nowSeconds() { return std::chrono::duration<double>(Clock::now().time_sin
 constexpr double kSceneTickSeconds = 0.02;
 // How long finish() waits for a servo thread to notice stop().
 constexpr double kServoStopWaitSeconds = 2.0;
+// A servo loop silent this long has stopped calling (a device library that died).
+constexpr double kServoSilenceSeconds = 1.0;
 
 // A review opens no device: the loop writes the output here.
 class RecordedOutput final : public DeviceDriver {
@@ -222,7 +224,8 @@ bool Session::servoFrame() { return loop_->servoFrame(); }
 
 SessionResult Session::runRealTime(double duration, const std::function<bool()>& interrupted) {
   start(duration);
-  while (!loop_->finished()) {
+  // A device library's servo loop that stops calling ends the run (finish() says so).
+  while (!loop_->finished() && !loop_->servoSilentFor(kServoSilenceSeconds)) {
     std::this_thread::sleep_for(std::chrono::duration<double>(kSceneTickSeconds));
     if (interrupted && interrupted()) loop_->stop();
     tick();

@@ -11,7 +11,7 @@ constexpr H3dNodeName kNames[] = {
     {"GodObjectRenderer", H3dNodeKind::Renderer},   {"RuspiniRenderer", H3dNodeKind::Renderer},
     {"Chai3DRenderer", H3dNodeKind::Renderer},      {"OpenHapticsRenderer", H3dNodeKind::Renderer},
     {"LayeredRenderer", H3dNodeKind::Renderer},
-    {"PhantomDevice", H3dNodeKind::Device},         {"FalconDevice", H3dNodeKind::Device},
+    {"FalconDevice", H3dNodeKind::Device},
     {"NiFalconDevice", H3dNodeKind::Device},        {"HapticMasterDevice", H3dNodeKind::Device},
     {"HaptionDevice", H3dNodeKind::Device},         {"ForceDimensionDevice", H3dNodeKind::Device},
     {"EntactDevice", H3dNodeKind::Device},          {"SimballDevice", H3dNodeKind::Device},

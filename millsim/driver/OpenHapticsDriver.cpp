@@ -1,0 +1,136 @@
+#include "millsim/driver/OpenHapticsDriver.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "millsim/driver/OpenHapticsApi.h"
+
+namespace millsim {
+
+using namespace openhaptics;
+
+OpenHapticsDriver::OpenHapticsDriver(const std::string& deviceName) : api_(&loadApi()) {
+  const Api& a = *api_;
+  const std::string which = deviceName.empty() ? "the default OpenHaptics device" : "OpenHaptics device '" + deviceName + "'";
+  device_ = a.hdInitDevice(deviceName.empty() ? nullptr : deviceName.c_str());
+  const HDErrorInfo e = a.hdGetError();
+  if (device_ == HD_INVALID_HANDLE || e.errorCode != HD_SUCCESS)
+    throw DeviceError("could not open " + which + " with " + loadedFrom() + ": " + describe(a, e) +
+                      ". Is the device plugged in and powered, and does the vendor's Touch_Setup (or "
+                      "Geomagic_Touch_Setup) find it? A Touch of the HID generation needs the 2022 or newer "
+                      "Touch device driver");
+  a.hdMakeCurrentDevice(device_);
+  HDenum calibration = a.hdCheckCalibration();
+  if (calibration == HD_CALIBRATION_NEEDS_UPDATE) {
+    HDint style = 0;
+    a.hdGetIntegerv(HD_CALIBRATION_STYLE, &style);
+    a.hdUpdateCalibration(HDenum(style));
+    calibration = a.hdCheckCalibration();
+  }
+  if (calibration != HD_CALIBRATION_OK) {
+    a.hdDisableDevice(device_);
+    disabled_ = true;
+    throw DeviceError(which + " is not calibrated" +
+                      (calibration == HD_CALIBRATION_NEEDS_MANUAL_INPUT
+                           ? std::string(": put the stylus in its inkwell (or run the vendor's Touch_Diagnostic "
+                                         "calibration) and start again")
+                           : std::string(" (hdCheckCalibration said ") + std::to_string(calibration) + ")"));
+  }
+  HDint dof = 3;
+  a.hdGetIntegerv(HD_OUTPUT_DOF, &dof);
+  caps_.outputDof = dof;
+  a.hdGetDoublev(HD_NOMINAL_MAX_FORCE, &caps_.maxForce);
+  a.hdGetDoublev(HD_NOMINAL_MAX_CONTINUOUS_FORCE, &caps_.maxContinuousForce);
+  double stiffness = 0.0;
+  a.hdGetDoublev(HD_NOMINAL_MAX_STIFFNESS, &stiffness);
+  caps_.maxStiffness = stiffness * 1e3;  // N/mm → N/m
+  if (const char* model = a.hdGetString(HD_DEVICE_MODEL_TYPE)) caps_.model = model;
+  a.hdEnable(HD_FORCE_OUTPUT);
+  if (HDErrorInfo f = a.hdGetError(); f.errorCode != HD_SUCCESS) {
+    a.hdDisableDevice(device_);
+    disabled_ = true;
+    throw DeviceError("could not enable force output on " + which + ": " + describe(a, f));
+  }
+}
+
+OpenHapticsDriver::~OpenHapticsDriver() { stopServo(); }
+
+unsigned int OpenHapticsDriver::servoTick(void* self) {
+  auto* d = static_cast<OpenHapticsDriver*>(self);
+  return d->frame_() ? HD_CALLBACK_CONTINUE : HD_CALLBACK_DONE;
+}
+
+void OpenHapticsDriver::startServo(std::function<bool()> frame) {
+  frame_ = std::move(frame);
+  handle_ = api_->hdScheduleAsynchronous(&OpenHapticsDriver::servoTick, this, HD_MAX_SCHEDULER_PRIORITY);
+  scheduled_ = true;
+  api_->hdStartScheduler();
+  if (HDErrorInfo e = api_->hdGetError(); e.errorCode != HD_SUCCESS)
+    throw DeviceError("OpenHaptics' scheduler did not start: " + describe(*api_, e));
+}
+
+void OpenHapticsDriver::stopServo() {
+  if (servoStopped_) return;
+  servoStopped_ = true;
+  if (scheduled_) {
+    api_->hdStopScheduler();  // returns once its thread calls no more
+    api_->hdUnschedule(handle_);
+  }
+  if (!disabled_) {
+    api_->hdDisableDevice(device_);
+    disabled_ = true;
+  }
+}
+
+bool OpenHapticsDriver::checkError(const char* during) {
+  const HDErrorInfo e = api_->hdGetError();
+  if (e.errorCode == HD_SUCCESS) return false;
+  ++counters_.transferErrors;
+  if (!failed_) {  // the run stops: one message, made once (not steady state)
+    failed_ = true;
+    failure_ = std::string("the OpenHaptics device failed ") + during + ": " + describe(*api_, e) +
+               (e.errorCode == HD_COMM_ERROR ? " (unplugged, or its driver stopped?)" : "");
+  }
+  return true;
+}
+
+DeviceReading OpenHapticsDriver::read(double, double) {
+  DeviceReading r;
+  api_->hdBeginFrame(device_);
+  inFrame_ = true;
+  double m[16];
+  HDint buttons = 0;
+  api_->hdGetDoublev(HD_CURRENT_TRANSFORM, m);
+  api_->hdGetIntegerv(HD_CURRENT_BUTTONS, &buttons);
+  if (checkError("reading its pose")) {
+    r.valid = false;
+    return r;
+  }
+  ++counters_.framesReceived;
+  // Column-major 4x4 (hdDefines.h's HD_CURRENT_TRANSFORM): rotation in the
+  // upper 3x3, translation (mm) in elements 12-14.
+  const glm::dmat3 rotation(m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]);
+  r.pose.position = glm::dvec3(m[12], m[13], m[14]) * 1e-3;
+  r.pose.orientation = glm::normalize(glm::quat_cast(rotation));
+  r.button = (buttons & HD_DEVICE_BUTTON_1) != 0;
+  return r;
+}
+
+void OpenHapticsDriver::write(const glm::dvec3& force, const glm::dvec3&) {
+  if (!inFrame_) api_->hdBeginFrame(device_);  // a frame whose read was skipped still sends
+  const double f[3] = {force.x, force.y, force.z};
+  api_->hdSetDoublev(HD_CURRENT_FORCE, f);
+  api_->hdEndFrame(device_);
+  inFrame_ = false;
+  if (!checkError("sending the force")) ++counters_.framesSent;
+}
+
+void OpenHapticsDriver::stop() {
+  // On the servo thread after the last frame: one more device frame, with no
+  // force. After stopServo (the library stopped calling) frames are no longer
+  // ours to make; hdDisableDevice has ended its force output.
+  if (servoStopped_) return;
+  write(glm::dvec3(0.0), glm::dvec3(0.0));
+}
+
+}  // namespace millsim
