@@ -16,6 +16,7 @@ int cliMain(int argc, char** argv) {
   int result = kExitOk;
   addBenchCommand(app, result);
   addCheckCommand(app, global, result);
+  addDevicesCommand(app, result);
   addNodesCommand(app, result);
   addPhantomCommand(app, result);
   addReplayCommand(app, global, result);

@@ -22,6 +22,7 @@ inline void addStrictFlag(CLI::App* cmd, bool& strict) {
 
 void addBenchCommand(CLI::App& app, int& result);
 void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
+void addDevicesCommand(CLI::App& app, int& result);
 void addNodesCommand(CLI::App& app, int& result);
 void addPhantomCommand(CLI::App& app, int& result);
 void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result);

@@ -14,19 +14,27 @@ AresUsbFields::AresUsbFields(Node* owner)
       serialNumber{owner, "serialNumber", Access::InitializeOnly, "",
                    "USB serial number of the ARES to open; empty opens the first matching device."} {}
 
-std::unique_ptr<DeviceDriver> AresUsbFields::openAres(double forceLimit, double torqueLimit) const {
+namespace {
+UsbMatch matchOf(const AresUsbFields& f) {
   UsbMatch m;
-  m.vendorId = static_cast<std::uint16_t>(vendorId.get());
-  m.productId = static_cast<std::uint16_t>(productId.get());
-  m.serialNumber = serialNumber.get();
+  m.vendorId = static_cast<std::uint16_t>(f.vendorId.get());
+  m.productId = static_cast<std::uint16_t>(f.productId.get());
+  m.serialNumber = f.serialNumber.get();
   m.deviceName = "ARES device";
   m.interfaceNumber = ares::kInterfaceNumber;
   m.endpointIn = ares::kEndpointIn;
   m.endpointOut = ares::kEndpointOut;
+  return m;
+}
+}  // namespace
+
+std::unique_ptr<DeviceDriver> AresUsbFields::openAres(double forceLimit, double torqueLimit) const {
   AresDriverOptions o;
   o.forceLimit = forceLimit;
   o.torqueLimit = torqueLimit;
-  return std::make_unique<AresDriver>(UsbTransport::open(m), o);
+  return std::make_unique<AresDriver>(UsbTransport::open(matchOf(*this)), o);
 }
+
+void AresUsbFields::findAres() const { (void)UsbTransport::open(matchOf(*this)); }
 
 }  // namespace millsim

@@ -24,6 +24,9 @@ public:
   // DeviceError says what was looked for and which USB devices were seen
   // when none matches.
   std::unique_ptr<DeviceDriver> openAres(double forceLimit, double torqueLimit) const;
+  // Finds and claims the USB interface only, sending nothing, then lets it
+  // go (`millsim devices`); DeviceError as openAres.
+  void findAres() const;
 };
 
 }  // namespace millsim

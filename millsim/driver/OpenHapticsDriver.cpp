@@ -133,4 +133,39 @@ void OpenHapticsDriver::stop() {
   write(glm::dvec3(0.0), glm::dvec3(0.0));
 }
 
+OpenHapticsProbe probeOpenHaptics(const std::string& deviceName) {
+  OpenHapticsProbe p;
+  const Api* api = nullptr;
+  try {
+    api = &loadApi();
+  } catch (const DeviceError& e) {
+    p.error = e.what();
+    return p;
+  }
+  const Api& a = *api;
+  p.library = loadedFrom();
+  const HHD device = a.hdInitDevice(deviceName.empty() ? nullptr : deviceName.c_str());
+  if (const HDErrorInfo e = a.hdGetError(); device == HD_INVALID_HANDLE || e.errorCode != HD_SUCCESS) {
+    p.error = "no device opened: " + describe(a, e);
+    return p;
+  }
+  p.device = true;
+  a.hdMakeCurrentDevice(device);
+  const HDenum calibration = a.hdCheckCalibration();
+  p.calibration = calibration == HD_CALIBRATION_OK            ? "OK"
+                  : calibration == HD_CALIBRATION_NEEDS_UPDATE ? "needs an update (MillSim makes it when it opens the device)"
+                                                              : "needs the stylus in its inkwell";
+  HDint dof = 3;
+  a.hdGetIntegerv(HD_OUTPUT_DOF, &dof);
+  p.capabilities.outputDof = dof;
+  a.hdGetDoublev(HD_NOMINAL_MAX_FORCE, &p.capabilities.maxForce);
+  a.hdGetDoublev(HD_NOMINAL_MAX_CONTINUOUS_FORCE, &p.capabilities.maxContinuousForce);
+  double stiffness = 0.0;
+  a.hdGetDoublev(HD_NOMINAL_MAX_STIFFNESS, &stiffness);
+  p.capabilities.maxStiffness = stiffness * 1e3;
+  if (const char* model = a.hdGetString(HD_DEVICE_MODEL_TYPE)) p.capabilities.model = model;
+  a.hdDisableDevice(device);
+  return p;
+}
+
 }  // namespace millsim

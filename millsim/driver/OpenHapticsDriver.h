@@ -27,6 +27,18 @@ struct OpenHapticsCapabilities {
   double maxStiffness = 0.0;     // N/m (the library says N/mm)
 };
 
+// What `millsim devices` says of OpenHaptics: whether libHD.so loads, and
+// the device `deviceName` (empty: the default) with its capabilities and
+// calibration, opened only to ask (no force output is enabled).
+struct OpenHapticsProbe {
+  std::string library;     // where libHD.so was loaded from; empty: not loaded
+  std::string error;       // why the library or the device could not be opened; empty: both were
+  bool device = false;     // the device opened
+  std::string calibration; // "OK", or what it needs
+  OpenHapticsCapabilities capabilities;
+};
+OpenHapticsProbe probeOpenHaptics(const std::string& deviceName);
+
 class OpenHapticsDriver final : public DeviceDriver {
 public:
   // Opens the device named `deviceName` (empty: the default one), checks its
