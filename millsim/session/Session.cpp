@@ -66,7 +66,7 @@ std::unique_ptr<Session> Session::review(Scene& scene, const RecordedRun& record
 
 Session::Session(Scene& scene, const SessionOptions& options, Source source, const Trajectory* trajectory,
                  const RecordedRun* recorded)
-    : scene_(scene), options_(options), source_(source), trajectory_(trajectory), recorded_(recorded) {
+    : scene_(scene), options_(options), source_(source), recorded_(recorded) {
   std::string renderer = options.renderer;
   if (source == Source::Recorded) {
     const auto& frames = recorded->frames();

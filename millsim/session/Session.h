@@ -186,7 +186,6 @@ private:
   Scene& scene_;
   SessionOptions options_;
   Source source_;
-  const Trajectory* trajectory_ = nullptr;
   const RecordedRun* recorded_ = nullptr;
   std::unique_ptr<CompiledRun> run_;
   std::string rendererName_, deviceName_;
