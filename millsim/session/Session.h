@@ -17,9 +17,12 @@
 //   review      a recorded run's frames (RecordedRun.h), bit for bit.
 // Who calls each haptic frame is chosen by how the session is driven, and
 // every driver runs the same frame (HapticLoop) and the same scene tick:
-//   start()          MillSim's own real-time thread at the device's rate;
-//   startServo()     a thread MillSim did not create — a device library's
-//                    servo loop — calls servoFrame() once per device tick;
+//   start()          MillSim's own real-time thread at the device's rate —
+//                    or, for a device whose library owns the servo loop
+//                    (PhantomDevice: OpenHaptics' scheduler), that library's
+//                    thread, which the driver hands servoFrame();
+//   startServo()     a thread MillSim did not create (an integrator's own
+//                    loop) calls servoFrame() once per tick;
 //   stepSimulated()  simulated time on the calling thread (deterministic).
 // With the first two the caller's thread is the scene thread: it calls
 // tick() every ~20 ms until finished() (runRealTime does both), then
