@@ -3,8 +3,6 @@
 // run's log instead, it steps through that run's recorded frames (review).
 // --sound-out writes the milling sound in the same simulated time, so it too is
 // the same bytes on every run.
-#include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <optional>

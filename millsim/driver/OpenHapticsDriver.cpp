@@ -9,6 +9,23 @@ namespace millsim {
 
 using namespace openhaptics;
 
+namespace {
+// What the current device says it can do (it must be made current first).
+OpenHapticsCapabilities capabilitiesOf(const Api& a) {
+  OpenHapticsCapabilities c;
+  HDint dof = 3;
+  a.hdGetIntegerv(HD_OUTPUT_DOF, &dof);
+  c.outputDof = dof;
+  a.hdGetDoublev(HD_NOMINAL_MAX_FORCE, &c.maxForce);
+  a.hdGetDoublev(HD_NOMINAL_MAX_CONTINUOUS_FORCE, &c.maxContinuousForce);
+  double stiffness = 0.0;
+  a.hdGetDoublev(HD_NOMINAL_MAX_STIFFNESS, &stiffness);
+  c.maxStiffness = stiffness * 1e3;  // N/mm → N/m
+  if (const char* model = a.hdGetString(HD_DEVICE_MODEL_TYPE)) c.model = model;
+  return c;
+}
+}  // namespace
+
 OpenHapticsDriver::OpenHapticsDriver(const std::string& deviceName) : api_(&loadApi()) {
   const Api& a = *api_;
   const std::string which = deviceName.empty() ? "the default OpenHaptics device" : "OpenHaptics device '" + deviceName + "'";
@@ -36,15 +53,7 @@ OpenHapticsDriver::OpenHapticsDriver(const std::string& deviceName) : api_(&load
                                          "calibration) and start again")
                            : std::string(" (hdCheckCalibration said ") + std::to_string(calibration) + ")"));
   }
-  HDint dof = 3;
-  a.hdGetIntegerv(HD_OUTPUT_DOF, &dof);
-  caps_.outputDof = dof;
-  a.hdGetDoublev(HD_NOMINAL_MAX_FORCE, &caps_.maxForce);
-  a.hdGetDoublev(HD_NOMINAL_MAX_CONTINUOUS_FORCE, &caps_.maxContinuousForce);
-  double stiffness = 0.0;
-  a.hdGetDoublev(HD_NOMINAL_MAX_STIFFNESS, &stiffness);
-  caps_.maxStiffness = stiffness * 1e3;  // N/mm → N/m
-  if (const char* model = a.hdGetString(HD_DEVICE_MODEL_TYPE)) caps_.model = model;
+  caps_ = capabilitiesOf(a);
   a.hdEnable(HD_FORCE_OUTPUT);
   if (HDErrorInfo f = a.hdGetError(); f.errorCode != HD_SUCCESS) {
     a.hdDisableDevice(device_);
@@ -155,15 +164,7 @@ OpenHapticsProbe probeOpenHaptics(const std::string& deviceName) {
   p.calibration = calibration == HD_CALIBRATION_OK            ? "OK"
                   : calibration == HD_CALIBRATION_NEEDS_UPDATE ? "needs an update (MillSim makes it when it opens the device)"
                                                               : "needs the stylus in its inkwell";
-  HDint dof = 3;
-  a.hdGetIntegerv(HD_OUTPUT_DOF, &dof);
-  p.capabilities.outputDof = dof;
-  a.hdGetDoublev(HD_NOMINAL_MAX_FORCE, &p.capabilities.maxForce);
-  a.hdGetDoublev(HD_NOMINAL_MAX_CONTINUOUS_FORCE, &p.capabilities.maxContinuousForce);
-  double stiffness = 0.0;
-  a.hdGetDoublev(HD_NOMINAL_MAX_STIFFNESS, &stiffness);
-  p.capabilities.maxStiffness = stiffness * 1e3;
-  if (const char* model = a.hdGetString(HD_DEVICE_MODEL_TYPE)) p.capabilities.model = model;
+  p.capabilities = capabilitiesOf(a);
   a.hdDisableDevice(device);
   return p;
 }

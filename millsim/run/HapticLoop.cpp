@@ -277,15 +277,19 @@ void HapticLoop::start(double duration) {
 
 void HapticLoop::join() {
   if (thread_.joinable()) thread_.join();
-  if (!driverServo_) return;
+  if (!servoRun_) return;
+  // A servo thread ends the run at its next call after stop(); one that
+  // stopped calling gets no more calls (its library's contract, and the
+  // driver's stopServo for a library MillSim started), so the device is
+  // released here.
   const auto until = Clock::now() + std::chrono::seconds(2);
   while (!finished() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  driver_->stopServo();  // no more calls after this
+  if (driverServo_) driver_->stopServo();
   if (!finished()) {
     if (failure_.empty()) failure_ = "the device's servo loop stopped calling before the run ended";
     endTimedRun();
   }
-  driverServo_ = false;
+  servoRun_ = driverServo_ = false;
 }
 
 bool HapticLoop::servoSilentFor(double seconds) const {
@@ -349,6 +353,7 @@ void HapticLoop::startServo(double duration) {
   if (thread_.joinable()) throw std::logic_error("HapticLoop::startServo: its own thread is running");
   duration_ = duration;
   servoOver_ = false;
+  servoRun_ = true;
   lastServoNs_.store(std::chrono::nanoseconds(Clock::now().time_since_epoch()).count(), std::memory_order_relaxed);
   finished_.store(false, std::memory_order_release);
 }

@@ -151,8 +151,10 @@ public:
   // calling. Any thread; wait-free.
   bool servoSilentFor(double seconds) const;
   void stop() { stopRequested_.store(true, std::memory_order_relaxed); }
-  // Waits for the run's end (a run the driver's servo loop drives: up to 2 s
-  // after stop(), then its loop is stopped and the device released here).
+  // Waits for the run's end. A servo-driven run (startServo, or a driver
+  // whose library owns the loop) gets up to 2 s after stop() for its next
+  // call; then the library's loop is stopped, the device released here and
+  // failure() says the servo loop stopped calling.
   void join();
   bool finished() const { return finished_.load(std::memory_order_acquire); }
   // Zeroes the device's output and releases it. The real-time thread does
@@ -272,7 +274,8 @@ private:
   std::chrono::steady_clock::time_point clockStart_, previousFrame_;
   double duration_ = 0.0;
   bool servoOver_ = false;
-  bool driverServo_ = false;  // the driver's library calls servoFrame
+  bool servoRun_ = false;     // scene thread: startServo was called (join waits for the servo thread)
+  bool driverServo_ = false;  // scene thread: the driver's library calls servoFrame
   // Steady-clock nanoseconds of the last servo frame (or startServo): servoSilentFor.
   std::atomic<std::int64_t> lastServoNs_{0};
 

@@ -34,8 +34,6 @@ double nowSeconds() { return std::chrono::duration<double>(Clock::now().time_sin
 // The scene thread's period while a wall-clock run goes on, and the period
 // of simulated time at which a simulated run does the same work.
 constexpr double kSceneTickSeconds = 0.02;
-// How long finish() waits for a servo thread to notice stop().
-constexpr double kServoStopWaitSeconds = 2.0;
 // A servo loop silent this long has stopped calling (a device library that died).
 constexpr double kServoSilenceSeconds = 1.0;
 
@@ -215,7 +213,6 @@ void Session::start(double duration) {
 
 void Session::startServo(double duration) {
   beginWallClock();
-  servo_ = true;
   sceneStart_ = nowSeconds();
   loop_->startServo(duration > 0.0 ? duration : naturalDuration_);
 }
@@ -375,20 +372,9 @@ SessionResult Session::finish() {
   SessionResult result;
   if (simulated_ || !started_) {
     loop_->finish();  // the stop row: the zero output the device got
-  } else if (servo_) {
-    // The servo thread ends the loop at its next call; a scheduler that
-    // stopped calling gets no more calls (its library's contract), so the
-    // device is released here.
-    loop_->stop();
-    const double until = nowSeconds() + kServoStopWaitSeconds;
-    while (!loop_->finished() && nowSeconds() < until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    if (!loop_->finished()) {
-      result.failure = "the device's servo loop stopped calling before the run ended";
-      loop_->finish();
-    }
   } else {
     loop_->stop();
-    loop_->join();
+    loop_->join();  // a servo loop that stopped calling is said in failure()
   }
   drain();
   if (!simulated_) regions_->update(writer_->last().t);
@@ -416,7 +402,7 @@ SessionResult Session::finish() {
   result.duration = simulated_ ? double(result.stats.frames) / rate() : result.stats.elapsed;
   result.last = last_;
   result.regions = regions_->results();
-  if (result.failure.empty()) result.failure = loop_->failure();
+  result.failure = loop_->failure();
   publishToDevice(*run_->device, last_, rate());
   publishRemovedVolumes(*run_);
   return result;

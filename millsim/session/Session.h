@@ -209,7 +209,7 @@ private:
   std::string status_;
   FrameRecord last_;        // the newest haptic frame drained (never the stop row)
   double naturalDuration_ = 0.0;
-  bool simulated_ = false, servo_ = false;
+  bool simulated_ = false;
   bool started_ = false, finishedCalled_ = false;
   double sceneStart_ = 0.0;  // steady clock, s: the run's 0 for the scene's events
   // Simulated stepping: frames to go, and where the review is.
