@@ -31,6 +31,11 @@ void printRunSummary(std::ostream& os, const SessionResult& r) {
      << " frames lost the CPU for over " << std::setprecision(0) << LoopStats::kPreemptedUs << " µs\n";
   os << "  peak force " << std::setprecision(3) << s.peakForce << " N, peak torque " << std::setprecision(4)
      << s.peakTorque << " N·m, frames in contact " << s.contactFrames << ", most contacts " << s.maxContacts << "\n";
+  if (!s.outputsTorque)
+    os << "  torque: rendered, not output (the device applies force only): " << s.torqueNotOutput
+       << " frames of torque logged and flagged " << kSafetyTorqueNotOutput << "\n";
+  if (s.firstForceAt >= 0.0)
+    os << "  first force sent " << std::setprecision(3) << s.firstForceAt << " s into the run\n";
   os << "  removed volume " << std::setprecision(3) << s.removedVolume * 1e9 << " mm³\n";
   os << "  safety: clamped " << s.safety.clamped << ", late frames blended " << s.safety.hiccups << ", watchdog trips "
      << s.safety.watchdogTrips << ", non-finite "
@@ -90,6 +95,14 @@ int finishOutputs(std::ostream& out, std::ostream& err, const SessionResult& s, 
   if (!s.failure.empty())
     // The loop has already zeroed the output and released the device.
     err << prefix << s.failure << (o.log.empty() ? "" : " (the log up to that frame is in " + o.log + ")") << "\n";
+  // A renderer that produced NaN or Inf on a device: nothing of it was sent,
+  // but the run is not one to trust (the hand felt zero meanwhile).
+  const long nonFinite = std::max<long>(long(s.stats.safety.nonFinite), s.stats.suppressed);
+  if (o.verb == "run" && nonFinite > 0) {
+    err << prefix << s.renderer << " produced non-finite output in " << nonFinite
+        << " frames; none was sent (the device got zero, then a soft start)\n";
+    return kExitFailure;
+  }
   return s.ok() ? kExitOk : kExitFailure;
 }
 

@@ -7,6 +7,8 @@
 #include "millsim/devices/DeviceChecks.h"
 #include "millsim/devices/HandDevice.h"
 #include "millsim/devices/MouseDevice.h"
+#include "millsim/devices/FalconDevice.h"
+#include "millsim/devices/ForceDimensionDevice.h"
 #include "millsim/devices/PhantomDevice.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/haptics/MillTool.h"
@@ -24,7 +26,7 @@ void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &Tissue::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
-                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &AnyDevice::type(), &PhantomDevice::type(), &MillingTarget::type(),
+                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &AnyDevice::type(), &PhantomDevice::type(), &ForceDimensionDevice::type(), &FalconDevice::type(), &MillingTarget::type(),
                             &ForbiddenRegion::type()})
     r.add(*t);
   r.addSceneCheck(&checkDevices);

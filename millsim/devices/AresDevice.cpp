@@ -13,6 +13,8 @@ const NodeType& AresDevice::type() {
 
 double AresDevice::outputHoldTime() const { return ares::kDeviceWatchdogSeconds; }
 
+std::optional<DeviceProbe> AresDevice::probe() const { return probeAres(); }
+
 std::unique_ptr<DeviceDriver> AresDevice::openDriver(const DriverOptions&) const {
   return openAres(forceLimit.get(), torqueLimit.get());
 }

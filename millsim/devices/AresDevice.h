@@ -17,6 +17,7 @@ public:
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
   // The firmware's watchdog (docs/ares-protocol.md, device rule 4).
   double outputHoldTime() const override;
+  std::optional<DeviceProbe> probe() const override;
 };
 
 }  // namespace millsim

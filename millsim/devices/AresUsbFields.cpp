@@ -37,4 +37,16 @@ std::unique_ptr<DeviceDriver> AresUsbFields::openAres(double forceLimit, double 
 
 void AresUsbFields::findAres() const { (void)UsbTransport::open(matchOf(*this)); }
 
+DeviceProbe AresUsbFields::probeAres() const {
+  DeviceProbe p;
+  try {
+    findAres();
+    p.opens = true;
+    p.what = "an ARES (its USB interface can be claimed)";
+  } catch (const DeviceError& e) {
+    p.what = e.what();
+  }
+  return p;
+}
+
 }  // namespace millsim

@@ -27,6 +27,8 @@ public:
   // Finds and claims the USB interface only, sending nothing, then lets it
   // go (`millsim devices`); DeviceError as openAres.
   void findAres() const;
+  // findAres as `millsim check` says it.
+  DeviceProbe probeAres() const;
 };
 
 }  // namespace millsim

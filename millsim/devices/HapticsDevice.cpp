@@ -4,7 +4,8 @@ namespace millsim {
 
 Pose HapticsDevice::calibrate(const Pose& raw) const {
   const glm::dquat q = glm::dquat(orientationCalibration.get().quat());
-  return {q * raw.position + glm::dvec3(positionCalibration.get()), q * raw.orientation};
+  return {double(positionScale.get()) * (q * raw.position) + glm::dvec3(positionCalibration.get()),
+          q * raw.orientation};
 }
 
 // Both are warnings, not errors: the scene still loads, draws and replays

@@ -53,9 +53,16 @@ public:
                      Range::openClosed(0, 50).in(quantity::force)};
   SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m); live.",
                       Range::openClosed(0, 5).in(quantity::torque)};
+  SFFloat positionScale{this, "positionScale", Access::InputOutput, 1.f,
+                        "Scene metres per device metre: scene position = positionScale · (orientationCalibration · "
+                        "raw) + positionCalibration. The device gets positionScale × the rendered force (energy "
+                        "conserved), so a scene stiffness k is felt as positionScale² · k. Read when a run starts; "
+                        "H3DAPI's 4x4 positionCalibration with a uniform scale sets it.",
+                        Range::closed(0.001, 1000)};
   PositionCalibration positionCalibration{
       this, "positionCalibration", Access::InputOutput, glm::vec3(0.f),
-      "Offset added to the raw device position (m). H3DAPI's 4x4 matrix form is read when it only translates.",
+      "Offset added to the scaled device position (m). H3DAPI's 4x4 matrix form is read when it translates and "
+      "scales uniformly (the scale goes to positionScale).",
       Range::closed(-10, 10).in(quantity::length)};
   SFRotation orientationCalibration{this, "orientationCalibration", Access::InputOutput, Rotation{},
                                     "Rotation applied to raw device poses (about the world origin)."};
@@ -63,6 +70,8 @@ public:
   SFNodeOf<MillTool> tool{this, "tool", Access::InputOutput, "The milling tool the device holds."};
   SFNodeOf<HapticsRendererNode> hapticsRenderer{this, "hapticsRenderer", Access::InputOutput,
                                                 "The algorithm that computes force and torque; live in the window of millsim run (keys 1-3, or a new node of a prepared type)."};
+
+  HapticsDevice() { positionCalibration.scaleInto(positionScale); }
 
   // Raw device pose → calibrated world pose.
   Pose calibrate(const Pose& raw) const;
@@ -99,6 +108,9 @@ public:
   // After openDriver (scene thread): what was opened, for the user, and in
   // the node's own output fields; empty when the node's type says it all.
   virtual std::string noteOpened() { return {}; }
+  // `millsim check`: a hardware device asks its library whether it could be
+  // opened now. Nothing for simulated devices (they always open).
+  virtual std::optional<DeviceProbe> probe() const { return std::nullopt; }
   void initialize(DiagnosticSink& sink) override;
 };
 

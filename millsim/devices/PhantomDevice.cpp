@@ -12,7 +12,13 @@ const NodeType& PhantomDevice::type() {
 }
 
 std::unique_ptr<DeviceDriver> PhantomDevice::openDriver(const DriverOptions&) const {
-  return std::make_unique<OpenHapticsDriver>(deviceName.get());
+  auto driver = std::make_unique<OpenHapticsDriver>(deviceName.get());
+  opened_ = driver->describe();
+  return driver;
 }
+
+std::optional<DeviceProbe> PhantomDevice::probe() const { return probeOpenHapticsDevice(deviceName.get()); }
+
+std::string PhantomDevice::noteOpened() { return opened_.empty() ? std::string() : "PhantomDevice: opened " + opened_; }
 
 }  // namespace millsim

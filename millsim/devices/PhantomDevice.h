@@ -21,6 +21,11 @@ public:
   // Loads libHD.so and opens the device; DeviceError says what was tried and
   // what to install or do (calibrate, plug in).
   std::unique_ptr<DeviceDriver> openDriver(const DriverOptions& options) const override;
+  std::string noteOpened() override;
+  std::optional<DeviceProbe> probe() const override;
+
+private:
+  mutable std::string opened_;
 };
 
 }  // namespace millsim

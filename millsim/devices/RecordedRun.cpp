@@ -91,6 +91,7 @@ RecordedRun RecordedRun::parse(const std::string& text, const std::string& file)
       const auto [p, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), flags);
       if (ec != std::errc() || p != cell.data() + cell.size())
         throw TrajectoryError(where() + "column 'flags' is not a whole number: '" + std::string(cell) + "'");
+      run.torqueNotOutput_ |= (flags & kSafetyTorqueNotOutput) != 0;
       if (flags & kSafetyStopped) {  // the zero output at the stop: not a frame to step
         stopped = true;
         continue;

@@ -37,11 +37,16 @@ public:
   const std::vector<std::string>& renderers() const { return renderers_; }
   // The burrs the log mentions (its tool column), in order of first appearance.
   const std::vector<ToolGeometry>& tools() const { return tools_; }
+  // True when a frame's flags say the device could not output its torque
+  // (kSafetyTorqueNotOutput): the run's device applied force only, and a
+  // review flags the same frames.
+  bool torqueNotOutput() const { return torqueNotOutput_; }
 
 private:
   std::vector<RecordedFrame> frames_;
   std::vector<std::string> renderers_;
   std::vector<ToolGeometry> tools_;
+  bool torqueNotOutput_ = false;
 };
 
 }  // namespace millsim

@@ -30,6 +30,16 @@ struct DeviceReading {
   bool valid = true;    // false: no fresh sample this frame (the loop holds the last pose)
 };
 
+// What `millsim check` says of a device without running it: whether it can
+// be opened here (asked of its library, no force enabled) and what it can
+// render, where the library tells.
+struct DeviceProbe {
+  bool opens = false;
+  std::string what;           // what would open ("Touch (...), 3-DOF force output"), or why nothing would
+  double maxStiffness = 0.0;  // N/m the device renders stably (its library's nominal figure); 0: not told
+  double maxForce = 0.0;      // N; 0: not told
+};
+
 // Counters a driver keeps for the log and the run summary.
 struct DeviceCounters {
   std::uint64_t framesSent = 0;
@@ -62,6 +72,10 @@ public:
   // frame, on the thread that ran the loop; must be safe after a failure.
   virtual void stop() {}
   virtual DeviceCounters counters() const { return {}; }
+  // Whether the device applies torque. A force-only device (Touch, omega.6,
+  // Falcon) gets a zero torque every frame; the loop logs the renderer's
+  // torque and flags it not output (kSafetyTorqueNotOutput). Known once open.
+  virtual bool outputsTorque() const { return true; }
 
   // A device whose library runs the servo loop itself (OpenHaptics'
   // scheduler calls back once per device tick): the haptic loop then starts

@@ -38,6 +38,8 @@ struct OpenHapticsProbe {
   OpenHapticsCapabilities capabilities;
 };
 OpenHapticsProbe probeOpenHaptics(const std::string& deviceName);
+// The same, as `millsim check` says it of a scene's device.
+DeviceProbe probeOpenHapticsDevice(const std::string& deviceName);
 
 class OpenHapticsDriver final : public DeviceDriver {
 public:
@@ -54,12 +56,16 @@ public:
   std::string failure() const override { return failure_; }
   void stop() override;
   DeviceCounters counters() const override { return counters_; }
+  // Never: see the top of this file.
+  bool outputsTorque() const override { return false; }
 
   bool ownsServoLoop() const override { return true; }
   void startServo(std::function<bool()> frame) override;
   void stopServo() override;
 
   const OpenHapticsCapabilities& capabilities() const { return caps_; }
+  // "Touch, 3-DOF force output, ...", for the user.
+  std::string describe() const;
 
 private:
   static unsigned int servoTick(void* self);

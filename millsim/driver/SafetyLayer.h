@@ -53,6 +53,9 @@ enum SafetyEvent : std::uint32_t {
   // A late frame on a fresh pose whose output was blended from the held
   // wrench, not zeroed (a hiccup; kSafetyWatchdog marks zeroed frames).
   kSafetyHiccup = 1u << 13,
+  // The device outputs force only (a Touch, an omega.6, a Falcon): the
+  // frame's torque went through the layer and into the log, not to the device.
+  kSafetyTorqueNotOutput = 1u << 14,
 };
 
 struct SafeWrench {

@@ -59,6 +59,7 @@ LoopSettings LoopSettings::from(const HapticsDevice& device, const ToolGeometry&
   s.rate = double(device.desiredHapticsRate.get());
   s.calibrationRotation = glm::normalize(glm::dquat(device.orientationCalibration.get().quat()));
   s.calibrationOffset = glm::dvec3(device.positionCalibration.get());
+  s.positionScale = double(device.positionScale.get());
   s.limits.forceLimit = device.forceLimit.get();
   s.limits.torqueLimit = device.torqueLimit.get();
   // From the node, not the opened driver: a review of a recorded run (which
@@ -97,6 +98,9 @@ HapticLoop::HapticLoop(VoxelScene& scene, std::unique_ptr<HapticAlgorithm> algor
   names_.push_back(switch_.current().name());
   currentName_ = names_.back().c_str();
   tool_ = sentTool_ = settings.tool;
+  stats_.outputsTorque = settings.outputsTorque;
+  if (!(settings.positionScale > 0.0) || !std::isfinite(settings.positionScale))
+    throw std::invalid_argument("the device's positionScale must be a positive number");
 }
 
 HapticLoop::~HapticLoop() {
@@ -152,7 +156,8 @@ void HapticLoop::frame(double t, double dt, double periodUs) {
     haveReading_ = true;
     sampleTime_ = t;
   }
-  const Pose device{settings_.calibrationRotation * lastReading_.pose.position + settings_.calibrationOffset,
+  const Pose device{settings_.positionScale * (settings_.calibrationRotation * lastReading_.pose.position) +
+                        settings_.calibrationOffset,
                     settings_.calibrationRotation * lastReading_.pose.orientation};
   advance(t, dt, periodUs, device, haveReading_ && lastReading_.button, begin);
 }
@@ -208,13 +213,16 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
 
   SafeWrench w;
   if (enabled_ && haveReading_) {
-    w = safety_.filter(out.force, out.torque, t, sampleTime_);
+    // Limits and ramps act on what the device gets: the scaled force.
+    w = safety_.filter(settings_.positionScale * out.force, out.torque, t, sampleTime_);
   } else if (!haveReading_) {
     w.events = kSafetyWatchdog;  // nothing from the device yet: send nothing
   }
+  const bool torqueHeld = !settings_.outputsTorque && w.torque != glm::dvec3(0.0);
+  if (torqueHeld) w.events |= kSafetyTorqueNotOutput;
   out.flags |= w.events;
   const glm::dquat toRaw = glm::conjugate(settings_.calibrationRotation);
-  driver_->write(toRaw * w.force, toRaw * w.torque);
+  driver_->write(toRaw * w.force, settings_.outputsTorque ? toRaw * w.torque : glm::dvec3(0.0));
 
   FrameRecord& r = newest_.back();
   r.frame = nextFrame_++;
@@ -244,6 +252,8 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   stats_.maxContacts = std::max(stats_.maxContacts, out.contacts);
   stats_.contactFrames += out.contacts > 0;
   stats_.suppressed += (out.flags & kFlagNonFiniteSuppressed) != 0;
+  stats_.torqueNotOutput += torqueHeld;
+  if (stats_.firstForceAt < 0.0 && w.force != glm::dvec3(0.0)) stats_.firstForceAt = t;
 }
 
 void HapticLoop::stepSimulated() {

@@ -49,7 +49,11 @@ struct FrameRecord {
   double t = 0.0;         // s since the run started
   Pose device;            // calibrated world pose the renderer saw
   bool button = false;
-  glm::dvec3 force{0.0};  // N, world frame, as sent (after the safety layer)
+  // N, world frame, as sent (after the safety layer): positionScale times the
+  // renderer's force, so that the work done at the hand is the scene's.
+  glm::dvec3 force{0.0};
+  // N·m about the burr centre, after the safety layer; a force-only device
+  // was not sent it (flag kSafetyTorqueNotOutput).
   glm::dvec3 torque{0.0};
   HapticOutput out;       // the renderer's output (flags include the safety events)
   double computeUs = 0.0; // device I/O + step + milling, wall clock; 0 unless timing is on
@@ -67,6 +71,14 @@ struct LoopSettings {
   double rate = 1000.0;  // Hz
   glm::dquat calibrationRotation{1.0, 0.0, 0.0, 0.0};
   glm::dvec3 calibrationOffset{0.0};
+  // Scene metres per device metre (HapticsDevice::positionScale): scene
+  // position = scale · (rotation · raw) + offset. Energy conserved: the
+  // device gets scale × the renderer's force, and a scene stiffness k is felt
+  // as scale² · k (docs/devices.md, Workspace mapping).
+  double positionScale = 1.0;
+  // The opened device applies torque (DeviceDriver::outputsTorque); a review
+  // takes it from its log's flags.
+  bool outputsTorque = true;
   SafetyLimits limits;
   bool enabled = true;
   ToolGeometry tool;          // the burr the first renderer was compiled for, and mills with
@@ -91,6 +103,9 @@ struct LoopStats {
   int maxContacts = 0;
   long contactFrames = 0;
   long suppressed = 0;         // frames whose renderer output was non-finite
+  double firstForceAt = -1.0;  // s; the first frame whose force was not zero (-1: none)
+  long torqueNotOutput = 0;    // frames with torque the device could not output (logged, not sent)
+  bool outputsTorque = true;   // LoopSettings::outputsTorque
   double removedVolume = 0.0;  // m³
   SafetyCounters safety;
   DeviceCounters device;

@@ -24,6 +24,7 @@ HudState HudFeed::state(const std::string& status) const {
   h.burr = std::string(burrShapeName(last_.tool.shape)) + " " + formatNumber(float(last_.tool.tipRadius * 1e3)) + " mm";
   h.force = glm::length(last_.force);
   h.torque = glm::length(last_.torque);
+  h.torqueNotOutput = (last_.out.flags & kSafetyTorqueNotOutput) != 0;
   h.contacts = last_.out.contacts;
   h.removedMm3 = last_.removedVolume * 1e9;
   h.milling = last_.button;

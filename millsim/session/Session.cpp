@@ -70,7 +70,14 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
     const auto& frames = recorded->frames();
     if (frames.empty()) throw std::runtime_error("the recorded run has no frames");
     const auto& names = recorded->renderers();
-    if (renderer.empty() && !names.empty()) renderer = names[std::size_t(std::max(frames.front().renderer, 0))];
+    if (renderer.empty() && !names.empty()) {
+      // The scene's own renderer when the run began with its type: its
+      // fields (a lesson's stiffness), not a default node of that type.
+      const std::string& first = names[std::size_t(std::max(frames.front().renderer, 0))];
+      const HapticsDevice* device = findDevice(scene);
+      const HapticsRendererNode* own = device ? device->hapticsRenderer.get().get() : nullptr;
+      if (!own || own->typeName() != first) renderer = first;
+    }
     // The review mills with the burr the run milled with, from its first frame.
     if (HapticsDevice* device = findDevice(scene)) toolNode_ = device->tool.get().get();
     if (toolNode_ && frames.front().tool >= 0) toolNode_->setGeometry(recorded->tools()[std::size_t(frames.front().tool)]);
@@ -119,6 +126,7 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
     driver = std::make_unique<RecordedOutput>();
   }
   naturalDuration_ = driver->naturalDuration();
+  run.settings.outputsTorque = source == Source::Recorded ? !recorded->torqueNotOutput() : driver->outputsTorque();
 
   const bool window = options.display == SessionOptions::Display::Window;
   if (options.prepareRenderers || window || recordedSwaps_ || recordedBurrSwaps_)

@@ -43,6 +43,7 @@ struct HudState {
   double hapticRate = 0.0;                     // Hz over the last second
   double computeP50Us = 0.0, computeP99Us = 0.0;  // per frame, over the last second
   double force = 0.0, torque = 0.0;            // N, N·m as sent
+  bool torqueNotOutput = false;                // the device applies force only: the torque was rendered, not sent
   int contacts = 0;
   double removedMm3 = 0.0;
   std::string renderer;                        // type name of the renderer in charge

@@ -18,7 +18,8 @@ void drawHud(const HudState& hud, const HudExtras& extras) {
     if (!hud.burr.empty()) ImGui::Text("burr: %s", hud.burr.c_str());
     ImGui::Text("haptic rate  %7.0f Hz", hud.hapticRate);
     ImGui::Text("compute      %5.0f µs p50  %5.0f µs p99", hud.computeP50Us, hud.computeP99Us);
-    ImGui::Text("force        %7.3f N    torque %7.4f N·m", hud.force, hud.torque);
+    ImGui::Text("force        %7.3f N    torque %7.4f N·m%s", hud.force, hud.torque,
+                hud.torqueNotOutput ? " (not output)" : "");
     ImGui::Text("contacts     %7d      removed %8.3f mm³", hud.contacts, hud.removedMm3);
     ImGui::Text("milling      %s", hud.milling ? "ON" : "off");
     ImGui::Text("view         %s   (window %4.1f ms)", extras.viewName.c_str(), extras.windowMs);

@@ -2,16 +2,21 @@
 // the same C functions with the same semantics as far as MillSim uses them —
 // device init and the error stack, the calibration state, frames, the
 // scheduler's own servo thread at 1 kHz calling asynchronous callbacks until
-// they return HD_CALLBACK_DONE — behind which a scripted stylus moves. A test
+// they return HD_CALLBACK_DONE — behind which MillSim's simulated hand
+// (millsim/devices/HandDevice.h) holds the stylus, closed loop: the forces
+// the device is sent push back on the hand. A test
 // points MILLSIM_OPENHAPTICS_LIBRARY at it, so `millsim run` itself opens it.
 // Never a stand-in for the real library: it is built only with the tests.
 //
-//   MILLSIM_HD_EMULATOR_TRAJECTORY  CSV (t,x,y,z,qw,qx,qy,qz,button; metres) the stylus follows
-//                                   in the device's frame (reported in mm, as the library does)
+//   MILLSIM_HD_EMULATOR_TRAJECTORY  CSV (t,x,y,z,qw,qx,qy,qz,button; metres) the hand's reference
+//                                   follows in the device's frame (reported in mm, as the library
+//                                   does); unset: the stylus rests at the origin
+//   MILLSIM_HD_EMULATOR_MAP         "s ox oy oz": the trajectory is in scene coordinates and the
+//                                   stylus at (p - o) / s (a scene's positionScale and positionCalibration)
 //   MILLSIM_HD_EMULATOR_RECORD      file to write every force the device was sent, one row per
 //                                   ended frame (t,fx,fy,fz), when the device is disabled
 //   MILLSIM_HD_EMULATOR_FAULT       no-device | not-calibrated | needs-update | unplug-at=S |
-//                                   stop-calling-at=S
+//                                   stop-calling-at=S | stall-at=S (one servo tick 60 ms late)
 // The types and constants are MillSim's own declarations of the vendor's
 // (millsim/driver/OpenHapticsApi.h, checked against hdDefines.h and hdScheduler.h).
 #include <atomic>
@@ -27,6 +32,8 @@
 #include <thread>
 #include <vector>
 
+#include "millsim/devices/HandDevice.h"
+#include "millsim/devices/Trajectory.h"
 #include "millsim/driver/OpenHapticsApi.h"
 
 using namespace millsim::openhaptics;
@@ -34,11 +41,6 @@ using namespace millsim::openhaptics;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct Sample {
-  double t, x, y, z, qw, qx, qy, qz;
-  int button;
-};
 
 struct Async {
   HDSchedulerCallback cb;
@@ -55,7 +57,10 @@ struct Emulator {
   std::thread servo;
   std::atomic<bool> running{false};
   Clock::time_point start;
-  std::vector<Sample> path;
+  std::unique_ptr<millsim::DeviceDriver> hand;  // null: no trajectory, the stylus rests at the origin
+  millsim::DeviceReading stylus;                // the hand's pose and button this tick
+  double lastHandT = 0.0;
+  bool handRead = false, stalled = false;
   std::string fault;
   double faultAt = 1e300;
   bool calibrated = true, needsUpdate = false, enabled = false, inFrame = false, opened = false;
@@ -75,34 +80,21 @@ void push(HDerror code, int internal = 0) {
   emu().errors.push_back(HDErrorInfo{code, internal, 0});
 }
 
-void loadPath(const char* file) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
-    Sample s{};
-    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d", &s.t, &s.x, &s.y, &s.z, &s.qw, &s.qx, &s.qy,
-                    &s.qz, &s.button) == 9)
-      emu().path.push_back(s);
+// The hand and its reference, mapped from scene to device coordinates.
+std::unique_ptr<millsim::DeviceDriver> makeHand(const char* file) {
+  millsim::Trajectory trajectory = millsim::Trajectory::load(file);
+  if (const char* map = std::getenv("MILLSIM_HD_EMULATOR_MAP")) {
+    double scale = 1.0, o[3] = {0, 0, 0};
+    if (std::sscanf(map, "%lf %lf %lf %lf", &scale, &o[0], &o[1], &o[2]) != 4 || !(scale > 0.0)) {
+      std::fprintf(stderr, "OpenHaptics emulator: MILLSIM_HD_EMULATOR_MAP='%s' is not 's ox oy oz' with s > 0\n", map);
+      std::abort();
+    }
+    std::vector<millsim::TrajectorySample> samples = trajectory.samples();
+    for (millsim::TrajectorySample& sample : samples)
+      sample.pose.position = (sample.pose.position - glm::dvec3(o[0], o[1], o[2])) / scale;
+    trajectory = millsim::Trajectory(std::move(samples));
   }
-}
-
-Sample at(double t) {
-  const auto& p = emu().path;
-  if (p.empty()) return Sample{t, 0, 0, 0, 1, 0, 0, 0, 0};
-  if (t <= p.front().t) return p.front();
-  for (std::size_t i = 1; i < p.size(); ++i) {
-    if (t > p[i].t) continue;
-    const Sample &a = p[i - 1], &b = p[i];
-    const double u = b.t > a.t ? (t - a.t) / (b.t - a.t) : 1.0;
-    auto mix = [&](double x, double y) { return x + u * (y - x); };
-    Sample s{t, mix(a.x, b.x), mix(a.y, b.y), mix(a.z, b.z), mix(a.qw, b.qw), mix(a.qx, b.qx), mix(a.qy, b.qy),
-             mix(a.qz, b.qz), a.button};
-    const double n = std::sqrt(s.qw * s.qw + s.qx * s.qx + s.qy * s.qy + s.qz * s.qz);
-    s.qw /= n, s.qx /= n, s.qy /= n, s.qz /= n;
-    return s;
-  }
-  return p.back();
+  return millsim::makeHandDriver(std::move(trajectory), millsim::HandModel{}, false);
 }
 
 bool unplugged() { return emu().fault == "unplug-at" && emu().tickT >= emu().faultAt; }
@@ -112,6 +104,12 @@ void servoLoop() {
   auto next = Clock::now();
   while (e.running.load()) {
     e.tickT = std::chrono::duration<double>(Clock::now() - e.start).count();
+    if (e.fault == "stall-at" && !e.stalled && e.tickT >= e.faultAt) {  // a late tick, as a busy USB bus makes one
+      e.stalled = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(60));
+      e.tickT = std::chrono::duration<double>(Clock::now() - e.start).count();
+      next = Clock::now();
+    }
     const bool silent = e.fault == "stop-calling-at" && e.tickT >= e.faultAt;
     if (!silent) {
       std::vector<Async> due;
@@ -128,7 +126,11 @@ void servoLoop() {
         }
     }
     next += std::chrono::milliseconds(1);
-    std::this_thread::sleep_until(next);
+    // As a servo thread keeps its period: sleep most of it, spin the rest
+    // (a plain sleep wakes late by the scheduler's slack on a loaded machine).
+    std::this_thread::sleep_until(next - std::chrono::microseconds(200));
+    while (Clock::now() < next) {
+    }
   }
 }
 
@@ -152,7 +154,14 @@ HHD hdInitDevice(HDstring) {
   }
   e.calibrated = e.fault != "not-calibrated" && e.fault != "needs-update";
   e.needsUpdate = e.fault == "needs-update";
-  if (const char* t = std::getenv("MILLSIM_HD_EMULATOR_TRAJECTORY")) loadPath(t);
+  if (const char* t = std::getenv("MILLSIM_HD_EMULATOR_TRAJECTORY")) {
+    try {
+      e.hand = makeHand(t);
+    } catch (const std::exception& x) {
+      std::fprintf(stderr, "OpenHaptics emulator: %s\n", x.what());
+      std::abort();
+    }
+  }
   if (std::getenv("MILLSIM_HD_EMULATOR_RECORD")) {
     e.record.reserve(4 * 200000);
     e.recording = true;
@@ -167,6 +176,7 @@ void hdDisableDevice(HHD) {
   Emulator& e = emu();
   if (!e.opened) return;
   e.opened = false;
+  e.hand.reset();  // after hdStopScheduler: no tick reads it any more
   if (const char* path = std::getenv("MILLSIM_HD_EMULATOR_RECORD")) {
     std::ofstream out(path);
     out << "t,fx,fy,fz\n";
@@ -181,6 +191,12 @@ void hdBeginFrame(HHD) {
   if (e.inFrame) push(0x0400);  // HD_ILLEGAL_BEGIN
   e.inFrame = true;
   if (unplugged()) push(HD_COMM_ERROR, -2);
+  // The hand moves to this tick under the force of the last one.
+  if (e.hand) {
+    e.stylus = e.hand->read(e.tickT, e.handRead ? e.tickT - e.lastHandT : 0.0);
+    e.handRead = true;
+    e.lastHandT = e.tickT;
+  }
 }
 
 void hdEndFrame(HHD) {
@@ -195,6 +211,8 @@ void hdEndFrame(HHD) {
     e.record.push_back(e.tickT);
     for (double f : e.force) e.record.push_back(f);
   }
+  // Forces go out at the end of the frame; a Touch outputs no torque.
+  if (e.hand) e.hand->write(glm::dvec3(e.force[0], e.force[1], e.force[2]), glm::dvec3(0.0));
 }
 
 HDErrorInfo hdGetError() {
@@ -220,7 +238,7 @@ void hdEnable(HDenum cap) {
 
 void hdGetIntegerv(HDenum name, HDint* v) {
   const Emulator& e = emu();
-  if (name == HD_CURRENT_BUTTONS) *v = at(e.tickT).button ? HD_DEVICE_BUTTON_1 : 0;
+  if (name == HD_CURRENT_BUTTONS) *v = e.stylus.button ? HD_DEVICE_BUTTON_1 : 0;
   else if (name == HD_OUTPUT_DOF) *v = 3;
   else if (name == HD_CALIBRATION_STYLE) *v = 1 << 2;  // HD_CALIBRATION_INKWELL
   else push(0x0100);  // HD_INVALID_ENUM
@@ -229,14 +247,14 @@ void hdGetIntegerv(HDenum name, HDint* v) {
 void hdGetDoublev(HDenum name, HDdouble* v) {
   const Emulator& e = emu();
   if (name == HD_CURRENT_TRANSFORM) {
-    const Sample s = at(e.tickT);
+    const millsim::Pose& p = e.stylus.pose;
     // Column-major 4x4: the rotation of the unit quaternion, translation in mm.
-    const double w = s.qw, x = s.qx, y = s.qy, z = s.qz;
+    const double w = p.orientation.w, x = p.orientation.x, y = p.orientation.y, z = p.orientation.z;
     const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y),
                          2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x),
                          2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
     const double m[16] = {r[0], r[1], r[2], 0, r[3], r[4], r[5], 0, r[6], r[7], r[8], 0,
-                          s.x * 1e3, s.y * 1e3, s.z * 1e3, 1};
+                          p.position.x * 1e3, p.position.y * 1e3, p.position.z * 1e3, 1};
     std::memcpy(v, m, sizeof m);
   } else if (name == HD_NOMINAL_MAX_FORCE) {
     *v = 3.3;  // what a Touch reports

@@ -6,6 +6,7 @@
 // cross-fade's carry-over a copy).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -44,10 +45,12 @@ public:
     double stiffness = 500.0;  // N/m
     double radius = 0.0006;    // m: the burr's
     int points = 64;
+    long nanFrom = -1;  // frame from which the force is NaN (the device tests' fault); -1: never
   };
   struct State {
     millsim::Pose lastDrawn;
     int contacts = 0;
+    long frames = 0;
   };
 
   explicit SpherePenaltyAlgorithm(const Params& p) : p_(p) {
@@ -59,7 +62,7 @@ public:
     }
   }
   std::string name() const override { return "SpherePenaltyRenderer"; }
-  void reset(const millsim::Pose& device) override { s_ = State{device, 0}; }
+  void reset(const millsim::Pose& device) override { s_ = State{device, 0, 0}; }
   void carryOver(const millsim::HapticAlgorithm& previous) override {
     if (const auto* p = dynamic_cast<const SpherePenaltyAlgorithm*>(&previous)) s_ = p->s_;
   }
@@ -80,6 +83,7 @@ public:
       ++s_.contacts;
     }
     out.force = p_.stiffness * push / double(sphere_.size());
+    if (p_.nanFrom >= 0 && s_.frames++ >= p_.nanFrom) out.force.x = std::numeric_limits<double>::quiet_NaN();
     out.contacts = s_.contacts;
     out.drawnTool = in.device;
     out.burrCentre = c;
@@ -108,11 +112,16 @@ public:
                              "Contact stiffness (N/m).", millsim::Range::closed(1, 1e5)};
   millsim::SFInt32 points{this, "points", millsim::Access::InitializeOnly, 64, "Points on the burr's sphere.",
                           millsim::Range::closed(4, 4096)};
+  millsim::SFInt32 nanFromFrame{this, "nanFromFrame", millsim::Access::InitializeOnly, -1,
+                                "A fault for the device tests: from this frame on the force is NaN, which the "
+                                "safety layer must never send; -1: never.",
+                                millsim::Range::closed(-1, 100000000)};
 
   std::unique_ptr<millsim::HapticAlgorithm> compile(const millsim::ToolGeometry& tool,
                                                     millsim::HapticScene&) const override {
     return std::make_unique<SpherePenaltyAlgorithm>(SpherePenaltyAlgorithm::Params{
-        .stiffness = double(stiffness.get()), .radius = tool.tipRadius, .points = points.get()});
+        .stiffness = double(stiffness.get()), .radius = tool.tipRadius, .points = points.get(),
+        .nanFrom = nanFromFrame.get()});
   }
   millsim::RendererTraits traits() const override {
     millsim::RendererTraits t;

@@ -74,6 +74,22 @@ bool isBackground(const glm::u8vec4& p, const glm::vec3& bg) {
   return true;
 }
 
+// The lesson trajectory (scene coordinates) as a device's raw path: a
+// hardware device plays a trajectory through its calibration, and a lesson
+// for a Touch scales its workspace (positionScale, positionCalibration).
+Trajectory inDeviceFrame(const Trajectory& scenePath, const HapticsDevice* device) {
+  if (!device) return scenePath;
+  const glm::dquat toRaw = glm::conjugate(glm::dquat(device->orientationCalibration.get().quat()));
+  const double scale = device->positionScale.get();
+  const glm::dvec3 offset(device->positionCalibration.get());
+  std::vector<TrajectorySample> samples = scenePath.samples();
+  for (TrajectorySample& s : samples) {
+    s.pose.position = toRaw * ((s.pose.position - offset) / scale);
+    s.pose.orientation = toRaw * s.pose.orientation;
+  }
+  return Trajectory(std::move(samples));
+}
+
 class SceneRender : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SceneRender, DrawsToothToolHoleAndMatchesReference) {
@@ -126,7 +142,9 @@ TEST_P(SceneRender, DrawsToothToolHoleAndMatchesReference) {
   const HapticsDevice* device = findDevice(scene);
   const Trajectory trajectory = device && device->trajectory()
                                     ? *device->trajectory()
-                                    : Trajectory::load(fs::path(MILLSIM_SOURCE_DIR) / "x3d/trajectories/mill-and-lean.csv");
+                                    : inDeviceFrame(Trajectory::load(fs::path(MILLSIM_SOURCE_DIR) /
+                                                                     "x3d/trajectories/mill-and-lean.csv"),
+                                                    device);
   ReplayOptions options;
   options.until = kReplayUntil;
   const ReplaySummary summary = replay(scene, trajectory, nullptr, options);

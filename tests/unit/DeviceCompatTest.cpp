@@ -1,7 +1,7 @@
 // H3DAPI's device conventions (issue 17, part 5): AnyDevice opens what there
 // is — an ARES, else the window's mouse, else a clear error — and a 4x4
-// positionCalibration matrix is read when it only translates, refused with
-// what it does otherwise.
+// positionCalibration matrix is read when it translates and scales uniformly,
+// refused with what it does otherwise.
 #include <gtest/gtest.h>
 
 #include "SceneText.h"
@@ -40,13 +40,33 @@ TEST(PositionCalibration, AnH3dTranslationMatrixIsTheOffset) {
   EXPECT_EQ(only<HandDevice>(plain).positionCalibration.get(), glm::vec3(0.1f, 0.f, 0.f)) << "MillSim's own form";
 }
 
-TEST(PositionCalibration, AMatrixThatScalesOrTurnsIsRefusedSayingSo) {
+TEST(PositionCalibration, AUniformScaleInTheMatrixIsThePositionScale) {
   LoadResult r = load(scene("", R"(<HandDevice positionCalibration="2 0 0 0.01  0 2 0 0  0 0 2 0  0 0 0 1"/>)"));
+  ASSERT_TRUE(r.ok()) << r.report();
+  const HandDevice& d = only<HandDevice>(r);
+  EXPECT_EQ(d.positionCalibration.get(), glm::vec3(0.01f, 0.f, 0.f));
+  EXPECT_EQ(d.positionScale.get(), 2.f);
+  Pose raw;
+  raw.position = glm::dvec3(0.001, 0.0, -0.002);
+  EXPECT_NEAR(d.calibrate(raw).position.x, 0.012, 1e-9) << "scene = scale * raw + offset";
+  EXPECT_NEAR(d.calibrate(raw).position.z, -0.004, 1e-9);
+  LoadResult own = load(scene("", R"(<HandDevice positionScale="0.1" positionCalibration="1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1"/>)"));
+  ASSERT_TRUE(own.ok()) << own.report();
+  EXPECT_FLOAT_EQ(only<HandDevice>(own).positionScale.get(), 0.1f) << "a matrix that only translates keeps it";
+}
+
+TEST(PositionCalibration, AMatrixThatTurnsOrScalesUnevenlyIsRefusedSayingSo) {
+  // A quarter turn about y.
+  LoadResult r = load(scene("", R"(<HandDevice positionCalibration="0 0 1 0.01  0 1 0 0  -1 0 0 0  0 0 0 1"/>)"));
   ASSERT_FALSE(r.ok());
   const std::string e = firstError(r).str();
   EXPECT_NE(e.find("test.x3d:5:13: error: bad value"), std::string::npos) << e;
-  EXPECT_NE(e.find("which scales by 2"), std::string::npos) << e;
-  EXPECT_NE(e.find("positionCalibration='0.01 0 0'"), std::string::npos) << "what to write instead: " << e;
+  EXPECT_NE(e.find("3x3 part is '0 0 1 0 1 0 -1 0 0'"), std::string::npos) << e;
+  EXPECT_NE(e.find("positionScale='s' and positionCalibration='0.01 0 0'"), std::string::npos)
+      << "what to write instead: " << e;
+  LoadResult uneven = load(scene("", R"(<HandDevice positionCalibration="2 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1"/>)"));
+  ASSERT_FALSE(uneven.ok());
+  EXPECT_NE(firstError(uneven).message.find("read as a translation and a uniform scale"), std::string::npos) << uneven.report();
   LoadResult p = load(scene("", R"(<HandDevice positionCalibration="1 0 0 0  0 1 0 0  0 0 1 0  0 0 1 1"/>)"));
   ASSERT_FALSE(p.ok());
   EXPECT_NE(firstError(p).message.find("is a projection"), std::string::npos) << p.report();
