@@ -10,6 +10,7 @@
 #include "millsim/devices/AresDevice.h"
 #include "millsim/driver/ForceDimensionDriver.h"
 #include "millsim/driver/OpenHapticsDriver.h"
+#include "millsim/driver/SpaceNav.h"
 
 namespace millsim::app {
 
@@ -63,7 +64,14 @@ void addDevicesCommand(CLI::App& app, int& result) {
             << " N), max stiffness " << c.maxStiffness << " N/m; calibration " << hd.calibration << "\n";
       }
     }
-    out << "3D mice: not supported yet\n";
+    out << "3D mice (SpaceMouseDevice, SpaceWareSensor):\n";
+    try {
+      const std::shared_ptr<SpaceNav> nav = SpaceNav::open();
+      out << "  spacenavd: connected; device: " << (nav->deviceName().empty() ? "(not named)" : nav->deviceName())
+          << "\n";
+    } catch (const DeviceError& e) {
+      out << "  spacenavd: " << e.what() << "\n";
+    }
     std::cout << out.str();
     result = kExitOk;
   });

@@ -35,7 +35,7 @@ void printRunSummary(std::ostream& os, const SessionResult& r) {
     os << "  torque: rendered, not output (the device applies force only): " << s.torqueNotOutput
        << " frames of torque logged and flagged " << kSafetyTorqueNotOutput << "\n";
   if (s.firstForceAt >= 0.0)
-    os << "  first force sent " << std::setprecision(3) << s.firstForceAt << " s into the run\n";
+    os << "  first force over 1 mN sent " << std::setprecision(3) << s.firstForceAt << " s into the run\n";
   os << "  removed volume " << std::setprecision(3) << s.removedVolume * 1e9 << " mm³\n";
   os << "  safety: clamped " << s.safety.clamped << ", late frames blended " << s.safety.hiccups << ", watchdog trips "
      << s.safety.watchdogTrips << ", non-finite "

@@ -10,6 +10,8 @@
 #include "millsim/devices/FalconDevice.h"
 #include "millsim/devices/ForceDimensionDevice.h"
 #include "millsim/devices/PhantomDevice.h"
+#include "millsim/devices/SpaceMouseDevice.h"
+#include "millsim/devices/SpaceWareSensor.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/haptics/MillTool.h"
 #include "millsim/lesson/ForbiddenRegion.h"
@@ -26,7 +28,8 @@ void registerBuiltinNodes(NodeRegistry& r) {
   registerStandardNodes(r);
   for (const NodeType* t : {&VolumeObject::type(), &Tissue::type(), &MillTool::type(), &LineProxyRenderer::type(),
                             &SurfacePointRenderer::type(), &BarbicRenderer::type(), &TrajectoryDevice::type(),
-                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &AnyDevice::type(), &PhantomDevice::type(), &ForceDimensionDevice::type(), &FalconDevice::type(), &MillingTarget::type(),
+                            &HandDevice::type(), &AresDevice::type(), &MouseDevice::type(), &AnyDevice::type(), &PhantomDevice::type(), &ForceDimensionDevice::type(), &FalconDevice::type(),
+                            &SpaceMouseDevice::type(), &SpaceWareSensor::type(), &MillingTarget::type(),
                             &ForbiddenRegion::type()})
     r.add(*t);
   r.addSceneCheck(&checkDevices);

@@ -1,11 +1,8 @@
 #include "millsim/driver/ForceDimensionApi.h"
 
-#include <dlfcn.h>
-
-#include <cstdlib>
-#include <vector>
 
 #include "millsim/driver/DeviceDriver.h"
+#include "millsim/driver/VendorLibrary.h"
 
 namespace millsim::forcedimension {
 
@@ -23,62 +20,40 @@ struct Loaded {
   std::string error;  // why it could not be loaded (the first call's answer, kept)
 };
 
-template <class F> void resolve(void* handle, const char* name, F& out, std::string& missing) {
-  out = reinterpret_cast<F>(dlsym(handle, name));
-  if (!out && missing.empty()) missing = name;
-}
-
 Loaded load() {
   Loaded l;
-  std::vector<std::string> tried;
-  void* handle = nullptr;
-  if (const char* path = std::getenv("MILLSIM_FORCEDIMENSION_LIBRARY"); path && *path) {
-    tried.push_back(path);
-    handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-  } else {
-    tried.push_back("libdhd.so");
-    handle = dlopen("libdhd.so", RTLD_NOW | RTLD_LOCAL);
-    for (const char* folder : kFolders) {
-      if (handle) break;
-      tried.push_back(std::string(folder) + "/libdhd.so");
-      handle = dlopen(tried.back().c_str(), RTLD_NOW | RTLD_LOCAL);
-    }
-  }
-  if (!handle) {
-    std::string list;
-    for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t;
-    l.error = "Force Dimension's libdhd.so was not found (tried " + list +
-              "): install the Force Dimension SDK for Linux (its lib/release/lin-x86_64-gcc/libdhd.so into "
-              "/usr/local/lib), or set MILLSIM_FORCEDIMENSION_LIBRARY to the library's path";
+  VendorLibrary lib("MILLSIM_FORCEDIMENSION_LIBRARY", "libdhd.so", kFolders, "Force Dimension's libdhd.so",
+                    "install the Force Dimension SDK for Linux (its lib/release/lin-x86_64-gcc/libdhd.so into "
+                    "/usr/local/lib), or set MILLSIM_FORCEDIMENSION_LIBRARY to the library's path");
+  if (!lib.loaded()) {
+    l.error = lib.error();
     return l;
   }
-  l.from = tried.back();
-  std::string missing;
+  l.from = lib.from();
   Api& a = l.api;
-  resolve(handle, "dhdGetDeviceCount", a.dhdGetDeviceCount, missing);
-  resolve(handle, "dhdOpen", a.dhdOpen, missing);
-  resolve(handle, "dhdOpenID", a.dhdOpenID, missing);
-  resolve(handle, "dhdOpenType", a.dhdOpenType, missing);
-  resolve(handle, "dhdClose", a.dhdClose, missing);
-  resolve(handle, "dhdEnableForce", a.dhdEnableForce, missing);
-  resolve(handle, "dhdGetSystemType", a.dhdGetSystemType, missing);
-  resolve(handle, "dhdGetSystemName", a.dhdGetSystemName, missing);
-  resolve(handle, "dhdGetSDKVersion", a.dhdGetSDKVersion, missing);
-  resolve(handle, "dhdHasWrist", a.dhdHasWrist, missing);
-  resolve(handle, "dhdHasActiveWrist", a.dhdHasActiveWrist, missing);
-  resolve(handle, "dhdGetPositionAndOrientationFrame", a.dhdGetPositionAndOrientationFrame, missing);
-  resolve(handle, "dhdGetButtonMask", a.dhdGetButtonMask, missing);
-  resolve(handle, "dhdSetForceAndTorqueAndGripperForce", a.dhdSetForceAndTorqueAndGripperForce, missing);
-  resolve(handle, "dhdErrorGetLast", a.dhdErrorGetLast, missing);
-  resolve(handle, "dhdErrorGetLastStr", a.dhdErrorGetLastStr, missing);
-  if (!missing.empty()) {
-    l.error = l.from + " has no function " + missing +
+  lib.resolve("dhdGetDeviceCount", a.dhdGetDeviceCount);
+  lib.resolve("dhdOpen", a.dhdOpen);
+  lib.resolve("dhdOpenID", a.dhdOpenID);
+  lib.resolve("dhdOpenType", a.dhdOpenType);
+  lib.resolve("dhdClose", a.dhdClose);
+  lib.resolve("dhdEnableForce", a.dhdEnableForce);
+  lib.resolve("dhdGetSystemType", a.dhdGetSystemType);
+  lib.resolve("dhdGetSystemName", a.dhdGetSystemName);
+  lib.resolve("dhdGetSDKVersion", a.dhdGetSDKVersion);
+  lib.resolve("dhdHasWrist", a.dhdHasWrist);
+  lib.resolve("dhdHasActiveWrist", a.dhdHasActiveWrist);
+  lib.resolve("dhdGetPositionAndOrientationFrame", a.dhdGetPositionAndOrientationFrame);
+  lib.resolve("dhdGetButtonMask", a.dhdGetButtonMask);
+  lib.resolve("dhdSetForceAndTorqueAndGripperForce", a.dhdSetForceAndTorqueAndGripperForce);
+  lib.resolve("dhdErrorGetLast", a.dhdErrorGetLast);
+  lib.resolve("dhdErrorGetLastStr", a.dhdErrorGetLastStr);
+  lib.resolveOptional("dhdGetMaxForce", a.dhdGetMaxForce);
+  if (!lib.missing().empty()) {
+    l.error = l.from + " has no function " + lib.missing() +
               ": it is not Force Dimension's DHD library, or older than MillSim needs (SDK 3.3 or later)";
-    dlclose(handle);
-    return l;
+    lib.close();
   }
-  a.dhdGetMaxForce = reinterpret_cast<double (*)(char)>(dlsym(handle, "dhdGetMaxForce"));  // optional
-  return l;  // stays loaded for the process
+  return l;  // otherwise it stays loaded for the process
 }
 
 const Loaded& loaded() {

@@ -1,13 +1,9 @@
 #include "millsim/driver/OpenHapticsApi.h"
 
-#include <dlfcn.h>
-
 #include <cstdio>
-#include <cstdlib>
-#include <mutex>
-#include <vector>
 
 #include "millsim/driver/DeviceDriver.h"
+#include "millsim/driver/VendorLibrary.h"
 
 namespace millsim::openhaptics {
 
@@ -23,61 +19,39 @@ struct Loaded {
   std::string error;  // why it could not be loaded (the first call's answer, kept)
 };
 
-template <class F> bool resolve(void* handle, const char* name, F& out, std::string& missing) {
-  out = reinterpret_cast<F>(dlsym(handle, name));
-  if (!out && missing.empty()) missing = name;
-  return out != nullptr;
-}
-
 Loaded load() {
   Loaded l;
-  std::vector<std::string> tried;
-  void* handle = nullptr;
-  if (const char* path = std::getenv("MILLSIM_OPENHAPTICS_LIBRARY"); path && *path) {
-    tried.push_back(path);
-    handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-  } else {
-    tried.push_back("libHD.so");
-    handle = dlopen("libHD.so", RTLD_NOW | RTLD_LOCAL);
-    for (const char* folder : kFolders) {
-      if (handle) break;
-      tried.push_back(std::string(folder) + "/libHD.so");
-      handle = dlopen(tried.back().c_str(), RTLD_NOW | RTLD_LOCAL);
-    }
-  }
-  if (!handle) {
-    std::string list;
-    for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t;
-    l.error = "OpenHaptics' libHD.so was not found (tried " + list +
-              "): install OpenHaptics for Linux and the Touch device driver from 3D Systems, or set "
-              "MILLSIM_OPENHAPTICS_LIBRARY to the library's path";
+  VendorLibrary lib("MILLSIM_OPENHAPTICS_LIBRARY", "libHD.so", kFolders, "OpenHaptics' libHD.so",
+                    "install OpenHaptics for Linux and the Touch device driver from 3D Systems, or set "
+                    "MILLSIM_OPENHAPTICS_LIBRARY to the library's path");
+  if (!lib.loaded()) {
+    l.error = lib.error();
     return l;
   }
-  l.from = tried.back();
-  std::string missing;
+  l.from = lib.from();
   Api& a = l.api;
-  resolve(handle, "hdInitDevice", a.hdInitDevice, missing);
-  resolve(handle, "hdDisableDevice", a.hdDisableDevice, missing);
-  resolve(handle, "hdMakeCurrentDevice", a.hdMakeCurrentDevice, missing);
-  resolve(handle, "hdBeginFrame", a.hdBeginFrame, missing);
-  resolve(handle, "hdEndFrame", a.hdEndFrame, missing);
-  resolve(handle, "hdGetError", a.hdGetError, missing);
-  resolve(handle, "hdGetErrorString", a.hdGetErrorString, missing);
-  resolve(handle, "hdEnable", a.hdEnable, missing);
-  resolve(handle, "hdGetIntegerv", a.hdGetIntegerv, missing);
-  resolve(handle, "hdGetDoublev", a.hdGetDoublev, missing);
-  resolve(handle, "hdGetString", a.hdGetString, missing);
-  resolve(handle, "hdSetDoublev", a.hdSetDoublev, missing);
-  resolve(handle, "hdCheckCalibration", a.hdCheckCalibration, missing);
-  resolve(handle, "hdUpdateCalibration", a.hdUpdateCalibration, missing);
-  resolve(handle, "hdStartScheduler", a.hdStartScheduler, missing);
-  resolve(handle, "hdStopScheduler", a.hdStopScheduler, missing);
-  resolve(handle, "hdScheduleAsynchronous", a.hdScheduleAsynchronous, missing);
-  resolve(handle, "hdUnschedule", a.hdUnschedule, missing);
-  if (!missing.empty()) {
-    l.error = l.from + " has no function " + missing +
+  lib.resolve("hdInitDevice", a.hdInitDevice);
+  lib.resolve("hdDisableDevice", a.hdDisableDevice);
+  lib.resolve("hdMakeCurrentDevice", a.hdMakeCurrentDevice);
+  lib.resolve("hdBeginFrame", a.hdBeginFrame);
+  lib.resolve("hdEndFrame", a.hdEndFrame);
+  lib.resolve("hdGetError", a.hdGetError);
+  lib.resolve("hdGetErrorString", a.hdGetErrorString);
+  lib.resolve("hdEnable", a.hdEnable);
+  lib.resolve("hdGetIntegerv", a.hdGetIntegerv);
+  lib.resolve("hdGetDoublev", a.hdGetDoublev);
+  lib.resolve("hdGetString", a.hdGetString);
+  lib.resolve("hdSetDoublev", a.hdSetDoublev);
+  lib.resolve("hdCheckCalibration", a.hdCheckCalibration);
+  lib.resolve("hdUpdateCalibration", a.hdUpdateCalibration);
+  lib.resolve("hdStartScheduler", a.hdStartScheduler);
+  lib.resolve("hdStopScheduler", a.hdStopScheduler);
+  lib.resolve("hdScheduleAsynchronous", a.hdScheduleAsynchronous);
+  lib.resolve("hdUnschedule", a.hdUnschedule);
+  if (!lib.missing().empty()) {
+    l.error = l.from + " has no function " + lib.missing() +
               ": it is not OpenHaptics' HD library, or a version MillSim does not know (OpenHaptics 3.x is)";
-    dlclose(handle);
+    lib.close();
   }
   // Otherwise it stays loaded for the process: its scheduler thread runs our callback.
   return l;

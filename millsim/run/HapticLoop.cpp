@@ -253,7 +253,7 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   stats_.contactFrames += out.contacts > 0;
   stats_.suppressed += (out.flags & kFlagNonFiniteSuppressed) != 0;
   stats_.torqueNotOutput += torqueHeld;
-  if (stats_.firstForceAt < 0.0 && w.force != glm::dvec3(0.0)) stats_.firstForceAt = t;
+  if (stats_.firstForceAt < 0.0 && glm::length(w.force) > 1e-3) stats_.firstForceAt = t;  // felt, not rounding noise
 }
 
 void HapticLoop::stepSimulated() {

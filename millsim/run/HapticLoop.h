@@ -103,7 +103,7 @@ struct LoopStats {
   int maxContacts = 0;
   long contactFrames = 0;
   long suppressed = 0;         // frames whose renderer output was non-finite
-  double firstForceAt = -1.0;  // s; the first frame whose force was not zero (-1: none)
+  double firstForceAt = -1.0;  // s; the first frame that sent more than 1 mN (-1: none)
   long torqueNotOutput = 0;    // frames with torque the device could not output (logged, not sent)
   bool outputsTorque = true;   // LoopSettings::outputsTorque
   double removedVolume = 0.0;  // m³

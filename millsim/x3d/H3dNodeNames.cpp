@@ -29,7 +29,7 @@ constexpr H3dNodeName kNames[] = {
     {"GraphicsOptions", H3dNodeKind::Other},        {"GraphicsCachingOptions", H3dNodeKind::Other},
     {"DebugOptions", H3dNodeKind::Other},           {"CollisionOptions", H3dNodeKind::Other},
     {"StereoInfo", H3dNodeKind::Other},             {"MouseSensor", H3dNodeKind::Other},
-    {"SpaceWareSensor", H3dNodeKind::Other},        {"WiimoteSensor", H3dNodeKind::Other},
+    {"WiimoteSensor", H3dNodeKind::Other},
     {"FullscreenRectangle", H3dNodeKind::Other},    {"H3DWindowNode", H3dNodeKind::Other},
     {"GLUTWindow", H3dNodeKind::Other},             {"WxWidgetsWindow", H3dNodeKind::Other},
     {"FrameBufferTextureGenerator", H3dNodeKind::Other}, {"ShaderAtomicCounter", H3dNodeKind::Other},

@@ -63,9 +63,10 @@ TEST(Units, EveryFieldsQuantityMatchesTheUnitItsDocumentationNames) {
       {"N·m", quantity::torque},        {"N/m", quantity::linearStiffness},
       {"N·s/m", quantity::linearStiffness}, {"N·m/rad", quantity::angularStiffness},
       {"N·m·s/rad", quantity::angularStiffness}, {"kg", quantity::mass},
-      {"kg·m²", quantity::inertia},     {"radians", quantity::angle}};
+      {"kg·m²", quantity::inertia},     {"radians", quantity::angle},
+      {"rad/s", quantity::angle}};  // per second converts as the angle (X3D has no time unit)
   // "(N/m)", "(m, world)", "d is in metres".
-  const std::regex named(R"(\((m|m/s|N|N·m|N/m|N·s/m|N·m/rad|N·m·s/rad|kg|kg·m²|radians)[,)]|in (metres))");
+  const std::regex named(R"(\((m|m/s|N|N·m|N/m|N·s/m|N·m/rad|N·m·s/rad|kg|kg·m²|radians|rad/s)[,)]|in (metres))");
   NodeRegistry r = builtinRegistry();
   int tagged = 0;
   for (const NodeType* t : r.all()) {
