@@ -24,9 +24,6 @@ const NodeType& SpaceWareSensor::type() {
   return t;
 }
 
-SpaceWareSensor::SpaceWareSensor() = default;
-SpaceWareSensor::~SpaceWareSensor() = default;
-
 bool SpaceWareSensor::hasPendingEvent() const {
   if (!enabled.get()) return isActive.get();  // to say it stopped
   if (!nav_) return Clock::now() >= nextTry_;

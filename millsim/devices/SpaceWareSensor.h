@@ -24,8 +24,6 @@ class SpaceWareSensor : public EventNode {
 public:
   static const NodeType& type();
   const NodeType& nodeType() const override { return type(); }
-  SpaceWareSensor();
-  ~SpaceWareSensor() override;
 
   SFBool enabled{this, "enabled", Access::InputOutput, true, "Whether the sensor reads the 3D mouse."};
   SFBool isActive{this, "isActive", Access::OutputOnly, false, "TRUE while connected to spacenavd."};

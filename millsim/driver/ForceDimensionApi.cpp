@@ -1,7 +1,6 @@
 #include "millsim/driver/ForceDimensionApi.h"
 
 
-#include "millsim/driver/DeviceDriver.h"
 #include "millsim/driver/VendorLibrary.h"
 
 namespace millsim::forcedimension {
@@ -14,14 +13,8 @@ namespace {
 const char* const kFolders[] = {"/usr/lib", "/usr/lib64", "/usr/local/lib", "/opt/forcedimension/lib",
                                 "/opt/forcedimension/sdk/lib/release/lin-x86_64-gcc"};
 
-struct Loaded {
-  Api api{};
-  std::string from;
-  std::string error;  // why it could not be loaded (the first call's answer, kept)
-};
-
-Loaded load() {
-  Loaded l;
+LoadedApi<Api> load() {
+  LoadedApi<Api> l;
   VendorLibrary lib("MILLSIM_FORCEDIMENSION_LIBRARY", "libdhd.so", kFolders, "Force Dimension's libdhd.so",
                     "install the Force Dimension SDK for Linux (its lib/release/lin-x86_64-gcc/libdhd.so into "
                     "/usr/local/lib), or set MILLSIM_FORCEDIMENSION_LIBRARY to the library's path");
@@ -56,18 +49,14 @@ Loaded load() {
   return l;  // otherwise it stays loaded for the process
 }
 
-const Loaded& loaded() {
-  static const Loaded l = load();
+const LoadedApi<Api>& loaded() {
+  static const LoadedApi<Api> l = load();
   return l;
 }
 
 }  // namespace
 
-const Api& loadApi() {
-  const Loaded& l = loaded();
-  if (!l.error.empty()) throw DeviceError(l.error);
-  return l.api;
-}
+const Api& loadApi() { return loaded().get(); }
 
 const std::string& loadedFrom() { return loaded().from; }
 

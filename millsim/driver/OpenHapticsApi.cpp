@@ -2,7 +2,6 @@
 
 #include <cstdio>
 
-#include "millsim/driver/DeviceDriver.h"
 #include "millsim/driver/VendorLibrary.h"
 
 namespace millsim::openhaptics {
@@ -13,14 +12,8 @@ namespace {
 const char* const kFolders[] = {"/usr/lib", "/usr/lib64", "/usr/local/lib", "/opt/OpenHaptics/Developer/lib",
                                 "/opt/OpenHaptics/lib"};
 
-struct Loaded {
-  Api api{};
-  std::string from;
-  std::string error;  // why it could not be loaded (the first call's answer, kept)
-};
-
-Loaded load() {
-  Loaded l;
+LoadedApi<Api> load() {
+  LoadedApi<Api> l;
   VendorLibrary lib("MILLSIM_OPENHAPTICS_LIBRARY", "libHD.so", kFolders, "OpenHaptics' libHD.so",
                     "install OpenHaptics for Linux and the Touch device driver from 3D Systems, or set "
                     "MILLSIM_OPENHAPTICS_LIBRARY to the library's path");
@@ -57,18 +50,14 @@ Loaded load() {
   return l;
 }
 
-const Loaded& loaded() {
-  static const Loaded l = load();
+const LoadedApi<Api>& loaded() {
+  static const LoadedApi<Api> l = load();
   return l;
 }
 
 }  // namespace
 
-const Api& loadApi() {
-  const Loaded& l = loaded();
-  if (!l.error.empty()) throw DeviceError(l.error);
-  return l.api;
-}
+const Api& loadApi() { return loaded().get(); }
 
 const std::string& loadedFrom() { return loaded().from; }
 

@@ -7,6 +7,8 @@
 #include <span>
 #include <string>
 
+#include "millsim/driver/DeviceDriver.h"
+
 namespace millsim {
 
 class VendorLibrary {
@@ -35,6 +37,19 @@ private:
 
   void* handle_ = nullptr;
   std::string from_, error_, missing_;
+};
+
+// A vendor API as resolved once per process: its functions and where they
+// came from, or why they could not be had (kept: the first answer stands).
+template <class Api> struct LoadedApi {
+  Api api{};
+  std::string from;
+  std::string error;
+  // The functions; DeviceError with `error` when there are none.
+  const Api& get() const {
+    if (!error.empty()) throw DeviceError(error);
+    return api;
+  }
 };
 
 }  // namespace millsim

@@ -16,27 +16,14 @@
 using namespace millsim;
 using namespace millsim::test;
 
-namespace {
-
-template <class T> T& only(const LoadResult& r) {
-  T* found = nullptr;
-  r.scene->forEachNode([&](Node& n) {
-    if (auto* t = dynamic_cast<T*>(&n)) found = t;
-  });
-  if (!found) throw std::runtime_error("no such node");
-  return *found;
-}
-
-}  // namespace
-
 TEST(SpaceWareSensor, SendsThePucksPushTwistAndButtonsThroughARoute) {
   LoadResult r = load(x3dScene(R"(
     <SpaceWareSensor DEF="Puck" translationScale="0.02" accumulateTimeDependent="true"/>
     <Transform DEF="Moved"><Shape><Sphere radius="0.01"/></Shape></Transform>
     <ROUTE fromNode="Puck" fromField="accumulatedTranslation" toNode="Moved" toField="set_translation"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  SpaceWareSensor& puck = only<SpaceWareSensor>(r);
-  Transform& moved = only<Transform>(r);
+  SpaceWareSensor& puck = onlyNode<SpaceWareSensor>(r);
+  Transform& moved = onlyNode<Transform>(r);
   EventClock clock(*r.scene);
   int pressesSeen = 0;
   const auto start = std::chrono::steady_clock::now();
@@ -66,5 +53,5 @@ TEST(SpaceWareSensor, IsInactiveWithoutTheDaemon) {
   EventClock clock(*r.scene);
   clock.tick(0.0);
   clock.tick(0.02);
-  EXPECT_FALSE(only<SpaceWareSensor>(r).isActive.get()) << "no daemon: inactive, and no error";
+  EXPECT_FALSE(onlyNode<SpaceWareSensor>(r).isActive.get()) << "no daemon: inactive, and no error";
 }

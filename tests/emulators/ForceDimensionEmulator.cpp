@@ -37,8 +37,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "EmulatedHand.h"
 #include "millsim/devices/HandDevice.h"
-#include "millsim/devices/Trajectory.h"
 #include "millsim/driver/ForceDimensionApi.h"
 
 using namespace millsim::forcedimension;
@@ -154,19 +154,9 @@ int openDevice(int type) {
   std::unique_ptr<millsim::DeviceDriver> hand;
   if (const char* file = std::getenv("MILLSIM_DHD_EMULATOR_TRAJECTORY"); file && *file) {
     try {
-      millsim::Trajectory trajectory = millsim::Trajectory::load(file);
-      if (const char* map = std::getenv("MILLSIM_DHD_EMULATOR_MAP"); map && *map) {
-        double s = 0.0;
-        glm::dvec3 o(0.0);
-        if (std::sscanf(map, "%lf %lf %lf %lf", &s, &o.x, &o.y, &o.z) != 4 || !(s > 0.0))
-          return refuse(e, std::string("MILLSIM_DHD_EMULATOR_MAP is not \"s ox oy oz\" with s > 0: ") + map);
-        std::vector<millsim::TrajectorySample> samples = trajectory.samples();
-        for (millsim::TrajectorySample& sample : samples) sample.pose.position = (sample.pose.position - o) / s;
-        trajectory = millsim::Trajectory(std::move(samples));
-      }
-      hand = millsim::makeHandDriver(std::move(trajectory), millsim::HandModel{}, false);
+      hand = millsim::test::emulatedHand(file, std::getenv("MILLSIM_DHD_EMULATOR_MAP"), "MILLSIM_DHD_EMULATOR_MAP");
     } catch (const std::exception& x) {
-      return refuse(e, std::string("MILLSIM_DHD_EMULATOR_TRAJECTORY: ") + x.what());
+      return refuse(e, x.what());
     }
   }
   e.recording = false;

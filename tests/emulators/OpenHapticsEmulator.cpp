@@ -32,8 +32,8 @@
 #include <thread>
 #include <vector>
 
+#include "EmulatedHand.h"
 #include "millsim/devices/HandDevice.h"
-#include "millsim/devices/Trajectory.h"
 #include "millsim/driver/OpenHapticsApi.h"
 
 using namespace millsim::openhaptics;
@@ -78,23 +78,6 @@ Emulator& emu() {
 void push(HDerror code, int internal = 0) {
   std::lock_guard lock(emu().mutex);
   emu().errors.push_back(HDErrorInfo{code, internal, 0});
-}
-
-// The hand and its reference, mapped from scene to device coordinates.
-std::unique_ptr<millsim::DeviceDriver> makeHand(const char* file) {
-  millsim::Trajectory trajectory = millsim::Trajectory::load(file);
-  if (const char* map = std::getenv("MILLSIM_HD_EMULATOR_MAP")) {
-    double scale = 1.0, o[3] = {0, 0, 0};
-    if (std::sscanf(map, "%lf %lf %lf %lf", &scale, &o[0], &o[1], &o[2]) != 4 || !(scale > 0.0)) {
-      std::fprintf(stderr, "OpenHaptics emulator: MILLSIM_HD_EMULATOR_MAP='%s' is not 's ox oy oz' with s > 0\n", map);
-      std::abort();
-    }
-    std::vector<millsim::TrajectorySample> samples = trajectory.samples();
-    for (millsim::TrajectorySample& sample : samples)
-      sample.pose.position = (sample.pose.position - glm::dvec3(o[0], o[1], o[2])) / scale;
-    trajectory = millsim::Trajectory(std::move(samples));
-  }
-  return millsim::makeHandDriver(std::move(trajectory), millsim::HandModel{}, false);
 }
 
 bool unplugged() { return emu().fault == "unplug-at" && emu().tickT >= emu().faultAt; }
@@ -156,7 +139,7 @@ HHD hdInitDevice(HDstring) {
   e.needsUpdate = e.fault == "needs-update";
   if (const char* t = std::getenv("MILLSIM_HD_EMULATOR_TRAJECTORY")) {
     try {
-      e.hand = makeHand(t);
+      e.hand = millsim::test::emulatedHand(t, std::getenv("MILLSIM_HD_EMULATOR_MAP"), "MILLSIM_HD_EMULATOR_MAP");
     } catch (const std::exception& x) {
       std::fprintf(stderr, "OpenHaptics emulator: %s\n", x.what());
       std::abort();

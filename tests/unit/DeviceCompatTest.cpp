@@ -18,32 +18,23 @@ std::string scene(const std::string& units, const std::string& body) {
          "</head>\n<Scene>\n" + body + "\n</Scene>\n</X3D>\n";
 }
 
-template <class T> T& only(const LoadResult& r) {
-  T* found = nullptr;
-  r.scene->forEachNode([&](Node& n) {
-    if (auto* t = dynamic_cast<T*>(&n)) found = t;
-  });
-  if (!found) throw std::runtime_error("no such node");
-  return *found;
-}
-
 TEST(PositionCalibration, AnH3dTranslationMatrixIsTheOffset) {
   LoadResult r = load(scene("", R"(<HandDevice positionCalibration="1 0 0 0.01  0 1 0 0.02  0 0 1 -0.03  0 0 0 1"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  EXPECT_EQ(only<HandDevice>(r).positionCalibration.get(), glm::vec3(0.01f, 0.02f, -0.03f));
+  EXPECT_EQ(onlyNode<HandDevice>(r).positionCalibration.get(), glm::vec3(0.01f, 0.02f, -0.03f));
   LoadResult mm = load(scene(R"(<unit category="length" name="mm" conversionFactor="0.001"/>)",
                              R"(<HandDevice positionCalibration="1 0 0 10  0 1 0 0  0 0 1 0  0 0 0 1"/>)"));
   ASSERT_TRUE(mm.ok()) << mm.report();
-  EXPECT_EQ(only<HandDevice>(mm).positionCalibration.get(), glm::vec3(0.01f, 0.f, 0.f)) << "the translation is a length";
+  EXPECT_EQ(onlyNode<HandDevice>(mm).positionCalibration.get(), glm::vec3(0.01f, 0.f, 0.f)) << "the translation is a length";
   LoadResult plain = load(scene("", R"(<HandDevice positionCalibration="0.1 0 0"/>)"));
   ASSERT_TRUE(plain.ok()) << plain.report();
-  EXPECT_EQ(only<HandDevice>(plain).positionCalibration.get(), glm::vec3(0.1f, 0.f, 0.f)) << "MillSim's own form";
+  EXPECT_EQ(onlyNode<HandDevice>(plain).positionCalibration.get(), glm::vec3(0.1f, 0.f, 0.f)) << "MillSim's own form";
 }
 
 TEST(PositionCalibration, AUniformScaleInTheMatrixIsThePositionScale) {
   LoadResult r = load(scene("", R"(<HandDevice positionCalibration="2 0 0 0.01  0 2 0 0  0 0 2 0  0 0 0 1"/>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  const HandDevice& d = only<HandDevice>(r);
+  const HandDevice& d = onlyNode<HandDevice>(r);
   EXPECT_EQ(d.positionCalibration.get(), glm::vec3(0.01f, 0.f, 0.f));
   EXPECT_EQ(d.positionScale.get(), 2.f);
   Pose raw;
@@ -52,7 +43,7 @@ TEST(PositionCalibration, AUniformScaleInTheMatrixIsThePositionScale) {
   EXPECT_NEAR(d.calibrate(raw).position.z, -0.004, 1e-9);
   LoadResult own = load(scene("", R"(<HandDevice positionScale="0.1" positionCalibration="1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1"/>)"));
   ASSERT_TRUE(own.ok()) << own.report();
-  EXPECT_FLOAT_EQ(only<HandDevice>(own).positionScale.get(), 0.1f) << "a matrix that only translates keeps it";
+  EXPECT_FLOAT_EQ(onlyNode<HandDevice>(own).positionScale.get(), 0.1f) << "a matrix that only translates keeps it";
 }
 
 TEST(PositionCalibration, AMatrixThatTurnsOrScalesUnevenlyIsRefusedSayingSo) {
@@ -77,7 +68,7 @@ TEST(PositionCalibration, AMatrixThatTurnsOrScalesUnevenlyIsRefusedSayingSo) {
 TEST(AnyDevice, FollowsTheMouseWhenThereIsNoAres) {
   LoadResult r = load(scene("", R"(<AnyDevice position="0 0.01 0" forceLimit="5"><MillTool/><SurfacePointRenderer/></AnyDevice>)"));
   ASSERT_TRUE(r.ok()) << r.report();
-  const AnyDevice& any = only<AnyDevice>(r);
+  const AnyDevice& any = onlyNode<AnyDevice>(r);
   EXPECT_EQ(any.startPose().position, glm::dvec3(0.0, 0.01f, 0.0)) << "the mouse starts where the scene says";
   Pose hand;
   hand.position = glm::dvec3(0.001, 0.002, 0.003);

@@ -29,6 +29,16 @@ template <class T> T& defNode(const LoadResult& r, const char* name) {
   return *n;
 }
 
+// The scene's one node of type T (the last, if several); throws if there is none.
+template <class T> T& onlyNode(const LoadResult& r) {
+  T* found = nullptr;
+  r.scene->forEachNode([&](Node& n) {
+    if (auto* t = dynamic_cast<T*>(&n)) found = t;
+  });
+  if (!found) throw std::runtime_error("no node of the type asked for");
+  return *found;
+}
+
 inline const Diagnostic& firstError(const LoadResult& r) {
   for (const auto& d : r.diagnostics)
     if (d.severity == Severity::Error) return d;
