@@ -24,7 +24,9 @@ void printRunSummary(std::ostream& os, const SessionResult& r) {
      << r.device << " (desired " << std::setprecision(0) << r.rate << " Hz)\n";
   os << "  haptic rate: mean " << std::setprecision(1) << s.meanRate() << " Hz, p1 " << s.p1Rate()
      << " Hz, missed deadlines " << s.missedDeadlines << " of " << s.frames << " ("
-     << std::setprecision(2) << (s.frames ? 100.0 * double(s.missedDeadlines) / double(s.frames) : 0.0) << " %)\n";
+     << std::setprecision(2) << (s.frames ? 100.0 * double(s.missedDeadlines) / double(s.frames) : 0.0)
+     << " %); over their period on the thread's CPU " << s.overrunFrames << " ("
+     << (s.frames ? 100.0 * double(s.overrunFrames) / double(s.frames) : 0.0) << " %)\n";
   os << "  compute per frame: mean " << std::setprecision(1) << s.computeUs.mean() << " µs, p99 "
      << s.computeUs.percentile(0.99) << " µs, max " << s.computeUs.max() << " µs (wall); on the thread's CPU p99 "
      << s.computeCpuUs.percentile(0.99) << " µs, max " << s.computeCpuUs.max() << " µs; " << s.preemptedFrames

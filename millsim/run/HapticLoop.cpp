@@ -247,6 +247,7 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   stats_.computeUs.add(r.computeUs);
   stats_.computeCpuUs.add(r.cpuUs);
   stats_.preemptedFrames += r.computeUs - r.cpuUs > LoopStats::kPreemptedUs;
+  stats_.overrunFrames += settings_.timing && r.cpuUs > 1e6 / settings_.rate;
   stats_.peakForce = std::max(stats_.peakForce, glm::length(w.force));
   stats_.peakTorque = std::max(stats_.peakTorque, glm::length(w.torque));
   stats_.maxContacts = std::max(stats_.maxContacts, out.contacts);

@@ -99,6 +99,10 @@ struct LoopStats {
   // wall time measures the machine, not the frame.
   static constexpr double kPreemptedUs = 10.0;
   long preemptedFrames = 0;
+  // Frames whose own computation, on the thread's CPU, took longer than a
+  // period: late by MillSim's doing on any host. A missed deadline may be the
+  // host's (a late wake-up, a foreign servo thread called late); these are not.
+  long overrunFrames = 0;
   double peakForce = 0.0, peakTorque = 0.0;
   int maxContacts = 0;
   long contactFrames = 0;
