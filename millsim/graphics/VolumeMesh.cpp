@@ -128,6 +128,14 @@ void VolumeMesh::upload(Level& level, const IsoSurfaceMesher::ChunkKey& key, con
     const glm::dvec3 at = glm::dvec3(chunk.positions[i]) + shift;  // level 0's local frame
     const glm::dvec3 inside = at - depth * glm::dvec3(chunk.normals[i]);
     scratch_[i] = {glm::vec3(at), chunk.normals[i], colourAt(sampler, voxels_.localToIndex(inside), iso_)};
+    // A surface facing a soft tissue (the pulp chamber's wall, exposed by a
+    // cut) is drawn in that tissue's colour: there is no surface of the soft
+    // tissue itself, it lies below the isoValue.
+    if (tissues_) {
+      const glm::ivec3 out = glm::ivec3(glm::round(voxels_.localToIndex(at + voxel * glm::dvec3(chunk.normals[i]))));
+      if (const int label = tissues_->labelAt(out.x, out.y, out.z); label > 0 && tissues_->soft(label))
+        scratch_[i].colour = tissues_->entries()[std::size_t(label)].colour;
+    }
   }
   level.gpu[key].upload(scratch_, chunk.indices);
   ++uploads_;

@@ -5,7 +5,10 @@
 #include <functional>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 
+#include <glm/gtc/quaternion.hpp>
+#include <openvdb/tools/FastSweeping.h>
 #include <glm/matrix.hpp>
 
 #include "millsim/core/Scene.h"
@@ -64,30 +67,51 @@ struct RegionAccounting::Region {
 
 struct RegionAccounting::Volume {
   const VoxelVolume* live;
-  std::unique_ptr<VoxelVolume> start;  // the densities before milling
-  glm::dmat4 localToWorld;
+  std::unique_ptr<VoxelVolume> start;  // the densities before milling (a copy, when counting a run)
+  const VoxelVolume* origin;           // the densities before milling: the copy, or the live volume before any
+  glm::dmat4 localToWorld, worldToLocal;
   const TissueMap* tissues;
-  double air, phiScale, voxelVolume;
+  double air, iso, phiScale, voxelVolume;
   BlockChannel channel{kChannelBlocks};
   std::unordered_map<std::uint64_t, std::vector<double>> contribution;  // per block, per region (m³)
   double phi(double v) const { return std::clamp((v - air) * phiScale, 0.0, 1.0); }
   glm::dvec3 world(int i, int j, int k) const {
-    return glm::dvec3(localToWorld * glm::dvec4(start->indexToLocal(glm::dvec3(i, j, k)), 1.0));
+    return glm::dvec3(localToWorld * glm::dvec4(origin->indexToLocal(glm::dvec3(i, j, k)), 1.0));
   }
   int label(int i, int j, int k) const { return tissues ? tissues->labelAt(i, j, k) : 0; }
 };
 
-RegionAccounting::RegionAccounting(const Scene& scene) {
+// A forbidden region's soft voxels in one volume: those of its tissues that
+// are soft (TissueMap::soft) whose original density is below the isoValue.
+struct RegionAccounting::SoftTissue {
+  std::size_t region, volume;
+  openvdb::CoordBBox box;                  // index box holding them
+  double edge;                             // the volume's smallest voxel edge in the world (m)
+  openvdb::FloatGrid::Ptr distance;        // in voxels, negative inside: how deep a voxel lies in the tissue
+  std::unordered_set<std::uint64_t> swept;  // voxels the head has held
+};
+
+namespace {
+std::uint64_t voxelKey(const openvdb::Coord& c) {
+  return std::uint64_t(std::uint32_t(c.x()) & 0x1fffff) | (std::uint64_t(std::uint32_t(c.y()) & 0x1fffff) << 21) |
+         (std::uint64_t(std::uint32_t(c.z()) & 0x1fffff) << 42);
+}
+}  // namespace
+
+RegionAccounting::RegionAccounting(const Scene& scene, bool counting) {
   // A scene without regions costs nothing: no snapshot of its volumes.
   if (scene.nodesOfType<AssessmentRegion>().empty()) return;
   for (const PlacedVolume& p : placedVolumes(scene)) {
     auto v = std::make_unique<Volume>();
     const VoxelVolume& live = *p.node->volume();
     v->live = &live;
-    v->start = std::make_unique<VoxelVolume>(live.grid().deepCopy(), live.dims(), live.voxelSize(), live.airValue());
+    if (counting) v->start = std::make_unique<VoxelVolume>(live.grid().deepCopy(), live.dims(), live.voxelSize(), live.airValue());
+    v->origin = counting ? v->start.get() : &live;
     v->localToWorld = p.localToWorld;
+    v->worldToLocal = glm::inverse(p.localToWorld);
     v->tissues = p.node->tissueMap();
     v->air = live.airValue();
+    v->iso = double(p.node->isoValue.get());
     v->phiScale = 1.0 / (2.0 * (double(p.node->isoValue.get()) - v->air));
     const glm::dvec3 h = live.voxelSize();
     v->voxelVolume = h.x * h.y * h.z * std::abs(glm::determinant(glm::dmat3(p.localToWorld)));
@@ -140,21 +164,131 @@ RegionAccounting::RegionAccounting(const Scene& scene) {
     results_[r].forbidden = dynamic_cast<ForbiddenRegion*>(regions_[r]->node) != nullptr;
   }
   if (regions_.empty()) return;
+  if (counting) findSoftTissues();
   for (std::size_t vi = 0; vi < volumes_.size(); ++vi) {
     const Volume& v = *volumes_[vi];
-    for (auto it = v.start->grid().cbeginValueOn(); it; ++it) {
+    for (auto it = v.origin->grid().cbeginValueOn(); it; ++it) {
       const double phi0 = v.phi(*it);
       if (phi0 <= 0.0) continue;
       const openvdb::Coord c = it.getCoord();
       const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
       const int label = v.label(c.x(), c.y(), c.z());
+      bool forbidden = false;
       for (std::size_t r = 0; r < regions_.size(); ++r)
-        if (regions_[r]->contains(vi, w, label)) results_[r].initial += phi0 * v.voxelVolume;
+        forbidden |= results_[r].forbidden && regions_[r]->contains(vi, w, label);
+      for (std::size_t r = 0; r < regions_.size(); ++r)
+        if (regions_[r]->contains(vi, w, label)) {
+          results_[r].initial += phi0 * v.voxelVolume;
+          if (forbidden && !results_[r].forbidden) results_[r].initialForbidden += phi0 * v.voxelVolume;
+        }
     }
   }
 }
 
 RegionAccounting::~RegionAccounting() = default;
+
+std::vector<RegionResult> RegionAccounting::atStart(const Scene& scene) {
+  return RegionAccounting(scene, false).results();
+}
+
+void RegionAccounting::findSoftTissues() {
+  for (std::size_t r = 0; r < regions_.size(); ++r) {
+    if (!results_[r].forbidden) continue;
+    for (std::size_t vi = 0; vi < volumes_.size(); ++vi) {
+      const Volume& v = *volumes_[vi];
+      std::vector<int> soft;
+      for (int l : regions_[r]->labels[vi])
+        if (v.tissues->soft(l)) soft.push_back(l);
+      if (soft.empty()) continue;
+      auto s = std::make_unique<SoftTissue>();
+      s->region = r;
+      s->volume = vi;
+      // Its soft voxels as a fog (1 inside, 0 on the voxels around them), made
+      // a signed distance by OpenVDB's fast sweeping: the depth of each below
+      // the tissue's surface, to report how deep the burr went.
+      auto fog = openvdb::FloatGrid::create(0.f);
+      auto fogAccess = fog->getAccessor();
+      auto density = v.origin->grid().getConstAccessor();
+      for (auto it = v.tissues->labels().cbeginValueOn(); it; ++it) {
+        if (std::find(soft.begin(), soft.end(), *it) == soft.end()) continue;
+        const openvdb::CoordBBox voxels = it.getBoundingBox();
+        for (auto c = voxels.begin(); c; ++c) {
+          if (!(density.getValue(*c) < v.iso)) continue;
+          s->box.expand(*c);
+          fogAccess.setValue(*c, 1.f);
+          for (const openvdb::Coord& d : {openvdb::Coord(1, 0, 0), openvdb::Coord(-1, 0, 0), openvdb::Coord(0, 1, 0),
+                                          openvdb::Coord(0, -1, 0), openvdb::Coord(0, 0, 1), openvdb::Coord(0, 0, -1)})
+            if (!fogAccess.isValueOn(*c + d)) fogAccess.setValueOn(*c + d, 0.f);
+        }
+      }
+      if (s->box.empty()) continue;
+      s->distance = openvdb::tools::fogToSdf(*fog, 0.5f);
+      const glm::dvec3 h = v.live->voxelSize();
+      s->edge = std::cbrt(std::abs(glm::determinant(glm::dmat3(v.localToWorld)))) * std::min({h.x, h.y, h.z});
+      soft_.push_back(std::move(s));
+    }
+  }
+}
+
+void RegionAccounting::stampViolation(std::size_t r, double t) {
+  double& first = results_[r].firstViolation;
+  if (first < 0.0 || t < first) first = t;
+}
+
+void RegionAccounting::burrAt(const Pose& pose, const BurrHead& head, double t) {
+  if (soft_.empty()) return;
+  // Frames a few micrometres apart read the same voxels: look again once the
+  // burr moved a quarter of the finest voxel or turned by a degree.
+  if (posed_ && head.shape == lastHead_.shape && head.radius == lastHead_.radius && head.length == lastHead_.length &&
+      head.endRadius == lastHead_.endRadius &&
+      glm::length(pose.position - lastPose_.position) < 0.25 * soft_.front()->edge &&
+      std::abs(glm::dot(pose.orientation, lastPose_.orientation)) > std::cos(0.5 * 0.01745))
+    return;
+  posed_ = true;
+  lastPose_ = pose;
+  lastHead_ = head;
+  const glm::dquat toHead = glm::inverse(pose.orientation);
+  const double reach = head.boundingRadius();
+  for (const auto& sp : soft_) {
+    SoftTissue& s = *sp;
+    const Volume& v = *volumes_[s.volume];
+    const Region& region = *regions_[s.region];
+    // The head's bounding sphere as an index box (corners of its world box).
+    openvdb::CoordBBox box;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner = pose.position + reach * glm::dvec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1);
+      const glm::dvec3 index = v.origin->localToIndex(glm::dvec3(v.worldToLocal * glm::dvec4(corner, 1.0)));
+      box.expand(openvdb::Coord(int(std::floor(index.x)), int(std::floor(index.y)), int(std::floor(index.z))));
+      box.expand(openvdb::Coord(int(std::ceil(index.x)), int(std::ceil(index.y)), int(std::ceil(index.z))));
+    }
+    box.intersect(s.box);
+    if (box.empty()) continue;
+    auto labels = v.tissues->labels().getConstAccessor();
+    auto density = v.origin->grid().getConstAccessor();
+    auto distance = s.distance->getConstAccessor();
+    RegionResult& result = results_[s.region];
+    bool entered = false;
+    for (auto it = box.begin(); it; ++it) {
+      const openvdb::Coord c = *it;
+      const int label = labels.getValue(c);
+      if (label <= 0 || !v.tissues->soft(label) || !(density.getValue(c) < v.iso)) continue;
+      if (std::find(region.labels[s.volume].begin(), region.labels[s.volume].end(), label) ==
+          region.labels[s.volume].end())
+        continue;
+      const glm::dvec3 q = toHead * (v.world(c.x(), c.y(), c.z()) - pose.position);
+      const double d = head.shape == BurrShape::Round ? glm::length(q) - head.radius
+                                                      : headProfileDistance(head, std::hypot(q.x, q.z), q.y);
+      if (d > 0.0) continue;
+      entered = true;
+      result.depth = std::max(result.depth, -double(distance.getValue(c)) * s.edge);
+      if (s.swept.insert(voxelKey(c)).second) result.swept += v.voxelVolume;
+    }
+    if (entered && result.firstEntry < 0.0) {
+      result.firstEntry = t;
+      stampViolation(s.region, t);
+    }
+  }
+}
 
 BlockChannel& RegionAccounting::channel(std::size_t volume) { return volumes_.at(volume)->channel; }
 
@@ -166,7 +300,7 @@ void RegionAccounting::update(double t) {
 void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t) {
   Volume& v = *volumes_[vi];
   const openvdb::Coord origin(block.origin.x, block.origin.y, block.origin.z);
-  const auto* startLeaf = v.start->grid().tree().probeConstLeaf(origin);
+  const auto* startLeaf = v.origin->grid().tree().probeConstLeaf(origin);
   std::vector<double> now(regions_.size(), 0.0);
   if (startLeaf) {  // a block that started as air has nothing to lose
     for (int z = 0; z < 8; ++z)
@@ -188,8 +322,7 @@ void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t)
   before.resize(regions_.size(), 0.0);
   for (std::size_t r = 0; r < regions_.size(); ++r) {
     results_[r].removed += now[r] - before[r];
-    if (results_[r].forbidden && results_[r].firstViolation < 0.0 && results_[r].removed > kViolationVoxels * v.voxelVolume)
-      results_[r].firstViolation = t;
+    if (results_[r].forbidden && results_[r].removed > kViolationVoxels * v.voxelVolume) stampViolation(r, t);
   }
   before = std::move(now);
 }
@@ -201,11 +334,13 @@ void RegionAccounting::publishFields() {
     if (node.removedVolume.get() != float(res.removed)) node.removedVolume.set(float(res.removed));
     if (auto* target = dynamic_cast<MillingTarget*>(&node); target && target->fraction.get() != float(res.fraction()))
       target->fraction.set(float(res.fraction()));
-    if (auto* forbidden = dynamic_cast<ForbiddenRegion*>(&node); forbidden && res.firstViolation >= 0.0 &&
-                                                                   !forbidden->violated.get()) {
+    auto* forbidden = dynamic_cast<ForbiddenRegion*>(&node);
+    if (!forbidden) continue;
+    if (res.firstViolation >= 0.0 && forbidden->firstViolationTime.get().seconds != res.firstViolation)
       forbidden->firstViolationTime.set(Time{res.firstViolation});
-      forbidden->violated.set(true);
-    }
+    if (res.firstViolation >= 0.0 && !forbidden->violated.get()) forbidden->violated.set(true);
+    if (forbidden->depth.get() != float(res.depth)) forbidden->depth.set(float(res.depth));
+    if (forbidden->sweptVolume.get() != float(res.swept)) forbidden->sweptVolume.set(float(res.swept));
   }
 }
 

@@ -7,6 +7,7 @@
 #include "millsim/core/Scene.h"
 #include "millsim/lesson/AssessmentRegion.h"
 #include "millsim/volume/Tissue.h"
+#include "millsim/volume/VolumeModule.h"
 #include "millsim/volume/VolumeObject.h"
 
 namespace millsim {
@@ -24,6 +25,11 @@ void checkRegions(const Scene& scene, DiagnosticSink& sink) {
                                       "', which no VolumeObject has (its tissues: " +
                                       (known.empty() ? std::string("none") : known) + ")");
       }
+  // What needs the voxels (libmillsim), once a volume has loaded them.
+  bool loaded = false;
+  for (const VolumeObject* v : scene.nodesOfType<VolumeObject>()) loaded |= v->volume() != nullptr;
+  std::string error;
+  if (const VolumeModule* module = loaded ? loadVolumeModule(error) : nullptr) module->checkLesson(scene, sink);
 }
 
 }  // namespace millsim

@@ -42,6 +42,9 @@ std::string reportJson(const LessonReport& r) {
     if (g.forbidden) {
       Json f{{"name", g.name}, {"removed_mm3", g.removed * 1e9}};
       f["first_violation_s"] = g.firstViolation >= 0.0 ? Json(g.firstViolation) : Json(nullptr);
+      f["first_entry_s"] = g.firstEntry >= 0.0 ? Json(g.firstEntry) : Json(nullptr);
+      f["depth_mm"] = g.depth * 1e3;
+      f["swept_mm3"] = g.swept * 1e9;
       j["forbidden"].push_back(f);
     } else {
       j["targets"].push_back(
@@ -108,10 +111,26 @@ LessonReport readReport(const std::string& path) {
     g.removed = number(f, "removed_mm3", "a forbidden region") * 1e-9;
     const Json& first = need(f, "first_violation_s", "a forbidden region");
     g.firstViolation = first.is_null() ? -1.0 : number(f, "first_violation_s", "a forbidden region");
+    // Reports written before soft tissues were entered have none of these.
+    if (f.contains("first_entry_s") && !f["first_entry_s"].is_null())
+      g.firstEntry = number(f, "first_entry_s", "a forbidden region");
+    if (f.contains("depth_mm")) g.depth = number(f, "depth_mm", "a forbidden region") * 1e-3;
+    if (f.contains("swept_mm3")) g.swept = number(f, "swept_mm3", "a forbidden region") * 1e-9;
     r.regions.push_back(g);
   }
   return r;
 }
+
+namespace {
+// ", entered at 6.612 s, 0.42 mm deep, 0.213 mm³ swept" for a forbidden soft tissue the burr entered.
+std::string entered(const RegionResult& g) {
+  if (g.firstEntry < 0.0) return {};
+  std::ostringstream o;
+  o << std::fixed << ", entered at " << std::setprecision(3) << g.firstEntry << " s, " << std::setprecision(2)
+    << g.depth * 1e3 << " mm deep, " << std::setprecision(3) << g.swept * 1e9 << " mm³ swept";
+  return o.str();
+}
+}  // namespace
 
 std::string describeReport(const LessonReport& r, bool markdown) {
   std::ostringstream o;
@@ -134,7 +153,8 @@ std::string describeReport(const LessonReport& r, bool markdown) {
         << g.removed * 1e9 << " | ";
       if (g.forbidden)
         o << (g.firstViolation >= 0.0 ? "violated at " + (std::ostringstream() << std::fixed << std::setprecision(3) << g.firstViolation).str() + " s"
-                                      : std::string("not touched"));
+                                      : std::string("not touched"))
+          << entered(g);
       else
         o << std::setprecision(1) << 100.0 * g.fraction() << " % removed";
       o << " |\n";
@@ -151,7 +171,8 @@ std::string describeReport(const LessonReport& r, bool markdown) {
     if (g.forbidden)
       o << (g.firstViolation >= 0.0
                 ? ", VIOLATED at " + (std::ostringstream() << std::fixed << std::setprecision(3) << g.firstViolation).str() + " s"
-                : std::string(", not touched"));
+                : std::string(", not touched"))
+        << entered(g);
     else
       o << " (" << std::setprecision(1) << 100.0 * g.fraction() << " % of it)";
     o << "\n";

@@ -148,9 +148,11 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
   if (sound_) writer_->observe([this](const FrameRecord& f) { sound_->add(f); });
   // Simulated time counts each frame's blocks at its own time; a wall-clock
   // run counts what arrived by each tick (region accounting lags a tick).
+  // A forbidden soft tissue (the pulp) is entered at the frame the drawn burr reaches it, in either.
   if (!regions_->empty())
     writer_->observe([this](const FrameRecord& f) {
       if (simulated_) regions_->update(f.t);
+      if (f.out.flags != kSafetyStopped) regions_->burrAt(f.out.drawnTool, f.tool.head(), f.t);
     });
   writer_->observe([this](const FrameRecord& f) {
     if (f.out.flags != kSafetyStopped) last_ = f;  // not the stop row

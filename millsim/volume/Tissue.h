@@ -28,6 +28,12 @@ public:
                    Range::closed(0, 1000)};
   SFColor color{this, "color", Access::InitializeOnly, Color{glm::vec3(0.85f, 0.8f, 0.7f)},
                 "Colour of the tissue's surface in the graphics.", Range::closed(0, 1)};
+  SFBool soft{this, "soft", Access::InitializeOnly, false,
+              "A soft tissue (pulp, a canal, marrow): its voxels lie below the VolumeObject's isoValue, so the burr "
+              "does not feel it and its hardness is not used (the burr clears its voxels as it passes); it is drawn in its colour where a cut exposes "
+              "it, and a ForbiddenRegion naming it is violated when the burr's surface enters it. A tissue whose "
+              "voxels are mostly below isoValue is soft whatever this says; true says it is meant (check warns "
+              "of one that is neither marked soft nor forbidden)."};
 
   // True when the tissue is chosen by densityRange (an empty range means by label).
   bool byDensity() const { return densityRange.get().x < densityRange.get().y; }

@@ -7,12 +7,12 @@
 namespace millsim {
 
 std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std::vector<const Tissue*>& tissues,
-                                            const VoxelVolume* labelVolume) {
+                                            const VoxelVolume* labelVolume, float isoValue) {
   auto map = std::make_unique<TissueMap>();
   map->entries_.push_back(Entry{"(unclassified material)", 1.f, glm::vec3(0.85f, 0.8f, 0.7f)});
   bool needLabels = false;
   for (const Tissue* t : tissues) {
-    map->entries_.push_back(Entry{t->name.get(), t->hardness.get(), t->color.get().rgb});
+    map->entries_.push_back(Entry{t->name.get(), t->hardness.get(), t->color.get().rgb, t->soft.get()});
     needLabels |= !t->byDensity() && t->label.get() >= 0;
   }
   if (needLabels && !labelVolume)
@@ -26,6 +26,7 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
   }
   for (const Entry& e : map->entries_) map->hardness_.push_back(e.hardness);
   map->counts_.assign(map->entries_.size(), 0);
+  map->below_.assign(map->entries_.size(), 0);
 
   // Same topology as the densities: every material voxel gets a label, air
   // stays background. Walked serially (a few ms for a tooth), so the result
@@ -49,8 +50,11 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
       }
       v.setValue(entry);
       ++map->counts_[std::size_t(entry)];
+      map->below_[std::size_t(entry)] += d < isoValue;
     }
   }
+  for (std::size_t e = 1; e < map->entries_.size(); ++e)
+    map->entries_[e].soft |= map->counts_[e] > 0 && 2 * map->below_[e] > map->counts_[e];
   // Whole leaves of one tissue (the inside of the dentin) become tiles.
   map->labels_->tree().prune();
   return map;

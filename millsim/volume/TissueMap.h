@@ -4,6 +4,7 @@
 // volume, so milling (which lowers densities) never turns enamel into dentin.
 // Read by the Miller on the haptic thread (hardness) and by graphics (colour);
 // nothing writes it after it is built.
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,14 +27,19 @@ public:
     std::string name;
     float hardness = 1.f;
     glm::vec3 colour{0.85f, 0.8f, 0.7f};
+    // Below the surface: marked Tissue::soft, or most of its voxels below
+    // the isoValue (the burr enters it, graphics draws it where exposed).
+    bool soft = false;
   };
 
   // Classifies every material voxel of `volume`: the first tissue that
   // matches wins — by its densityRange on `volume`, or by its label on
   // `labels` (which must have the volume's dimensions; may be null when no
-  // tissue is chosen by label). Throws VolumeError naming the problem.
+  // tissue is chosen by label). A voxel below `isoValue` counts as below the
+  // surface (belowSurfaceCounts, Entry::soft). Throws VolumeError naming the problem.
   static std::unique_ptr<TissueMap> build(const VoxelVolume& volume, const std::vector<const Tissue*>& tissues,
-                                          const VoxelVolume* labels);
+                                          const VoxelVolume* labels,
+                                          float isoValue = -std::numeric_limits<float>::infinity());
 
   const LabelGrid& labels() const { return *labels_; }
   // Entry 0 is the default material (hardness 1); tissue i is entry i + 1.
@@ -44,12 +50,15 @@ public:
   int find(const std::string& name) const;
   // Voxels of each entry (material voxels only; entry 0 = unclassified material).
   const std::vector<std::uint64_t>& voxelCounts() const { return counts_; }
+  // Of those, the voxels whose original density is below the isoValue.
+  const std::vector<std::uint64_t>& belowSurfaceCounts() const { return below_; }
+  bool soft(int entry) const { return entries_[std::size_t(entry)].soft; }
 
 private:
   LabelGrid::Ptr labels_;
   std::vector<Entry> entries_;
   std::vector<float> hardness_;  // by entry, for the Miller's inner loop
-  std::vector<std::uint64_t> counts_;
+  std::vector<std::uint64_t> counts_, below_;
 };
 
 }  // namespace millsim

@@ -76,7 +76,7 @@ void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesys
     return;
   }
   try {
-    tissueMap_ = TissueMap::build(volume_, list, labels.get());
+    tissueMap_ = TissueMap::build(volume_, list, labels.get(), isoValue_);
   } catch (const VolumeError& e) {
     sink.error(node.location(), std::string("VolumeObject tissues: ") + e.what());
     return;
@@ -150,7 +150,7 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
 
 namespace {
 
-const VolumeModule kModule{kVolumeAbiVersion, &loadVolumeContents};
+const VolumeModule kModule{kVolumeAbiVersion, &loadVolumeContents, &checkLessonVolumes};
 
 }  // namespace
 

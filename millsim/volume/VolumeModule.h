@@ -12,11 +12,12 @@
 namespace millsim {
 
 class DiagnosticSink;
+class Scene;
 class VolumeContents;
 class VolumeObject;
 
 // Bumped whenever this table changes incompatibly.
-inline constexpr int kVolumeAbiVersion = 1;
+inline constexpr int kVolumeAbiVersion = 2;
 
 struct VolumeModule {
   int abiVersion;
@@ -24,6 +25,9 @@ struct VolumeModule {
   // material and classifies its tissues; reports to `sink` and sets the
   // node's output fields. Null when no url loaded.
   std::unique_ptr<VolumeContents> (*load)(VolumeObject& node, DiagnosticSink& sink);
+  // The whole-scene checks of a lesson that read voxels (a tissue never
+  // felt, a target with no material): checkLessonVolumes.
+  void (*checkLesson)(const Scene& scene, DiagnosticSink& sink);
 };
 
 // Opens libmillsim once per process (MILLSIM_VOLUME_LIBRARY overrides its
@@ -33,5 +37,7 @@ const VolumeModule* loadVolumeModule(std::string& error);
 
 // The loader itself, defined in libmillsim.
 std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, DiagnosticSink& sink);
+// Defined in libmillsim's lesson room (millsim/lesson/LessonVolumeChecks.cpp).
+void checkLessonVolumes(const Scene& scene, DiagnosticSink& sink);
 
 }  // namespace millsim
