@@ -68,7 +68,7 @@ struct RegionAccounting::Region {
 struct RegionAccounting::Volume {
   const VoxelVolume* live;
   std::unique_ptr<VoxelVolume> start;  // the densities before milling (a copy, when counting a run)
-  const VoxelVolume* origin;           // the densities before milling: the copy, or the live volume before any
+  const VoxelVolume* origin;           // the densities before milling: the copy, or the live volume before any is
   glm::dmat4 localToWorld, worldToLocal;
   const TissueMap* tissues;
   double air, iso, phiScale, voxelVolume;
@@ -87,6 +87,7 @@ struct RegionAccounting::SoftTissue {
   std::size_t region, volume;
   openvdb::CoordBBox box;                  // index box holding them
   double edge;                             // the volume's smallest voxel edge in the world (m)
+  openvdb::FloatGrid::Ptr fog;             // 1 on its soft voxels, 0 on those around them
   openvdb::FloatGrid::Ptr distance;        // in voxels, negative inside: how deep a voxel lies in the tissue
   std::unordered_set<std::uint64_t> swept;  // voxels the head has held
 };
@@ -206,8 +207,8 @@ void RegionAccounting::findSoftTissues() {
       // Its soft voxels as a fog (1 inside, 0 on the voxels around them), made
       // a signed distance by OpenVDB's fast sweeping: the depth of each below
       // the tissue's surface, to report how deep the burr went.
-      auto fog = openvdb::FloatGrid::create(0.f);
-      auto fogAccess = fog->getAccessor();
+      s->fog = openvdb::FloatGrid::create(0.f);
+      auto fogAccess = s->fog->getAccessor();
       auto density = v.origin->grid().getConstAccessor();
       for (auto it = v.tissues->labels().cbeginValueOn(); it; ++it) {
         if (std::find(soft.begin(), soft.end(), *it) == soft.end()) continue;
@@ -222,7 +223,7 @@ void RegionAccounting::findSoftTissues() {
         }
       }
       if (s->box.empty()) continue;
-      s->distance = openvdb::tools::fogToSdf(*fog, 0.5f);
+      s->distance = openvdb::tools::fogToSdf(*s->fog, 0.5f);
       const glm::dvec3 h = v.live->voxelSize();
       s->edge = std::cbrt(std::abs(glm::determinant(glm::dmat3(v.localToWorld)))) * std::min({h.x, h.y, h.z});
       soft_.push_back(std::move(s));
@@ -252,7 +253,6 @@ void RegionAccounting::burrAt(const Pose& pose, const BurrHead& head, double t) 
   for (const auto& sp : soft_) {
     SoftTissue& s = *sp;
     const Volume& v = *volumes_[s.volume];
-    const Region& region = *regions_[s.region];
     // The head's bounding sphere as an index box (corners of its world box).
     openvdb::CoordBBox box;
     for (int c = 0; c < 8; ++c) {
@@ -263,18 +263,13 @@ void RegionAccounting::burrAt(const Pose& pose, const BurrHead& head, double t) 
     }
     box.intersect(s.box);
     if (box.empty()) continue;
-    auto labels = v.tissues->labels().getConstAccessor();
-    auto density = v.origin->grid().getConstAccessor();
+    auto fog = s.fog->getConstAccessor();
     auto distance = s.distance->getConstAccessor();
     RegionResult& result = results_[s.region];
     bool entered = false;
     for (auto it = box.begin(); it; ++it) {
       const openvdb::Coord c = *it;
-      const int label = labels.getValue(c);
-      if (label <= 0 || !v.tissues->soft(label) || !(density.getValue(c) < v.iso)) continue;
-      if (std::find(region.labels[s.volume].begin(), region.labels[s.volume].end(), label) ==
-          region.labels[s.volume].end())
-        continue;
+      if (fog.getValue(c) != 1.f) continue;  // not one of the region's soft voxels
       const glm::dvec3 q = toHead * (v.world(c.x(), c.y(), c.z()) - pose.position);
       const double d = head.shape == BurrShape::Round ? glm::length(q) - head.radius
                                                       : headProfileDistance(head, std::hypot(q.x, q.z), q.y);
