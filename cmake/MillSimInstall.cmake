@@ -12,6 +12,9 @@ install(TARGETS millsim_scene millsim millsim_medical EXPORT MillSimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS millsim-app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The process that reads a .vdb first (millsim/volume/VdbProbeMain.cpp); readVdb
+# finds it from libmillsim by the relative path of libexec/millsim.
+install(TARGETS millsim-vdb-probe RUNTIME DESTINATION ${CMAKE_INSTALL_LIBEXECDIR}/millsim)
 # The command's verbs, next to libmillsim_scene where the command opens them (apps/CliModule.h).
 install(TARGETS millsim_cli LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # libmillsim_graphics sits next to libmillsim, where loadGraphicsModule() looks for it.

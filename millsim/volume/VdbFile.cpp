@@ -11,13 +11,16 @@
 #include <cmath>
 #include <csignal>
 #include <cstdint>
-#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include <dlfcn.h>
+#include <fcntl.h>
 #include <poll.h>
-#include <sys/resource.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,6 +28,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Prune.h>
 
+#include "millsim/volume/VdbGrids.h"
 #include "millsim/volume/VdbStructureCheck.h"
 #include "millsim/volume/VolumeIO.h"
 
@@ -35,9 +39,6 @@ namespace millsim {
 namespace {
 
 const char* const kDimsMeta = "millsim_dims";
-// What one grid may take in memory: a dense float grid of kMaxVoxels is 4 GiB;
-// twice that leaves room for the tree.
-constexpr std::int64_t kMaxGridBytes = std::int64_t(kMaxVoxels) * 8;
 
 std::string gridList(const openvdb::GridPtrVec& grids) {
   std::string s;
@@ -46,28 +47,6 @@ std::string gridList(const openvdb::GridPtrVec& grids) {
     s += "'" + g->getName() + "' (" + g->valueType() + ")";
   }
   return s.empty() ? "none" : s;
-}
-
-void refuseOversizedGrid(const std::string& name, const openvdb::GridBase& grid) {
-  const auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
-  const auto hi = grid.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
-  if (lo && hi) {
-    std::uint64_t voxels = 1;
-    for (int a = 0; a < 3; ++a) {
-      const std::int64_t extent = std::int64_t(hi->value()[a]) - std::int64_t(lo->value()[a]) + 1;
-      voxels = extent <= 0 ? 0 : std::min<std::uint64_t>(voxels * std::uint64_t(extent), kMaxVoxels + 1);
-    }
-    if (voxels > kMaxVoxels) {
-      std::ostringstream m;
-      m << name << ": grid '" << grid.getName() << "' spans " << lo->value() << " to " << hi->value()
-        << ", more than the limit of " << kMaxVoxels << " voxels";
-      throw VolumeError(m.str());
-    }
-  }
-  if (const auto mem = grid.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
-      mem && mem->value() > kMaxGridBytes)
-    throw VolumeError(name + ": grid '" + grid.getName() + "' needs " + std::to_string(mem->value()) +
-                      " bytes in memory, more than the " + std::to_string(kMaxGridBytes) + " a volume may take");
 }
 
 // The volume's grid from the file's, clipped to the volume's box: active
@@ -128,86 +107,64 @@ openvdb::FloatGrid::Ptr copyClipped(const openvdb::FloatGrid& file, glm::ivec3 d
   return out;
 }
 
-// Every grid of the file, read now. The statistics OpenVDB writes with every
-// grid (bounding box, memory) are read without the trees, so a grid far
-// larger than a volume may be is refused before its tree is allocated. A file
-// without them (or one that lies) is still bounded by the voxel-count check.
-openvdb::GridPtrVecPtr readGrids(const std::string& name) {
-  try {
-    openvdb::io::File f(name);
-    f.open(/*delayLoad=*/false);  // read everything now, so that a bad file fails here
-    const openvdb::GridPtrVecPtr described = f.readAllGridMetadata();  // kept: the loop must not outlive it
-    for (const auto& g : *described) refuseOversizedGrid(name, *g);
-    openvdb::GridPtrVecPtr grids = f.getGrids();
-    f.close();
-    return grids;
-  } catch (const VolumeError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw VolumeError(name + ": cannot read as an OpenVDB file: " + e.what());
-  }
-}
-
 // OpenVDB 10 reads a chunk that the file marks as stored uncompressed into
 // its buffer before it compares the chunk's size with the buffer's
 // (io/Compression.cc, bloscFromStream and unzipFromStream): a corrupt size
 // writes past the buffer, and the process crashed later (found by mutating a
-// small .vdb; under the release build a segmentation fault at exit). So a
-// child process reads the file first, with its memory and CPU time bounded;
-// this process reads it only after the child has read it whole. A child that
-// fails passes its error up a pipe; one that crashes or is stopped by its
-// limits makes the file refused. About 1 ms for the fork and one more read
-// of the file (20 ms for the full-size phantom).
-void readInAChildFirst(const std::string& name) {
+// small .vdb; under the release build a segmentation fault at exit). So
+// millsim-vdb-probe (VdbProbeMain.cpp), a process of its own with its memory
+// and CPU time bounded, reads the file first; this process reads it only after
+// the probe has read it whole. A probe that fails passes its error up a pipe;
+// one that crashes, is stopped by its limits or outlives the wall-clock limit
+// makes the file refused. It is spawned, not forked: a forked copy of this
+// process would hold every lock its other threads held at the fork (CI saw
+// one wait a minute). About 15 ms for the spawn and one more read of the file.
+
+// Where the probe is: MILLSIM_VDB_PROBE, else next to libmillsim (the build
+// tree), else in the install's libexec folder relative to it.
+std::vector<fs::path> probeCandidates() {
+  if (const char* env = std::getenv("MILLSIM_VDB_PROBE"); env && *env) return {fs::path(env)};
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&readVdb), &info) || !info.dli_fname) return {};
+  const fs::path folder = fs::path(info.dli_fname).parent_path();
+  return {folder / "millsim-vdb-probe", (folder / MILLSIM_VDB_PROBE_FROM_LIBDIR / "millsim-vdb-probe").lexically_normal()};
+}
+
+void readInAProbeFirst(const std::string& name) {
+  const std::vector<fs::path> candidates = probeCandidates();
+  fs::path probe;
+  std::string tried;
+  for (const fs::path& c : candidates) {
+    if (access(c.c_str(), X_OK) == 0) {
+      probe = c;
+      break;
+    }
+    tried += (tried.empty() ? "" : ", ") + c.string();
+  }
+  if (probe.empty())
+    throw VolumeError(name + ": cannot check the file: MillSim's OpenVDB reader millsim-vdb-probe is not at " +
+                      (tried.empty() ? std::string("any known place") : tried) +
+                      " (reinstall MillSim, or set MILLSIM_VDB_PROBE to its path)");
   int fds[2];
-  if (pipe(fds) != 0) throw VolumeError(name + ": cannot check the file (pipe: " + std::strerror(errno) + ")");
+  if (pipe2(fds, O_CLOEXEC) != 0) throw VolumeError(name + ": cannot check the file (pipe: " + std::strerror(errno) + ")");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);  // dup2 clears close-on-exec
+  const std::string probePath = probe.string();
+  char* const argv[] = {const_cast<char*>(probePath.c_str()), const_cast<char*>(name.c_str()), nullptr};
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, probePath.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  if (spawned != 0) {
+    close(fds[0]);
+    throw VolumeError(name + ": cannot check the file (starting " + probePath + ": " + std::strerror(spawned) + ")");
+  }
+  // Wall-clock time too: the probe's CPU-time limit does not stop a process
+  // that waits. A minute, and a second per megabyte, as the probe's CPU time.
   std::error_code ec;
   const std::uintmax_t bytes = fs::file_size(name, ec);
-  // The child's address space: what this process maps now (read before the
-  // fork), plus what a volume's grid may take and a margin.
-  long pages = 0;
-  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
-    std::fclose(statm);
-  }
-  const rlim_t addressSpace = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + rlim_t(kMaxGridBytes) + (rlim_t(1) << 30);
   const int seconds = 60 + int(ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20));
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(fds[0]), close(fds[1]);
-    throw VolumeError(name + ": cannot check the file (fork: " + std::strerror(errno) + ")");
-  }
-  if (pid == 0) {  // the child: read, report, and leave without running anything of the parent's
-    close(fds[0]);
-    // A minute of CPU time and a second per megabyte read is far above a real
-    // file's need; a grid may take up to kMaxGridBytes (refuseOversizedGrid).
-    rlimit cpu{};
-    cpu.rlim_cur = cpu.rlim_max = rlim_t(seconds);
-    setrlimit(RLIMIT_CPU, &cpu);
-    if (pages > 0) {  // without /proc the current size is unknown: no limit rather than a wrong one
-      rlimit as{};
-      as.rlim_cur = as.rlim_max = addressSpace;
-      setrlimit(RLIMIT_AS, &as);
-    }
-    int code = 0;
-    std::string message;
-    try {
-      readGrids(name);
-    } catch (const std::exception& e) {
-      message = e.what(), code = 1;
-    } catch (...) {
-      message = name + ": cannot read as an OpenVDB file", code = 1;
-    }
-    for (std::size_t at = 0; at < message.size();) {
-      const ssize_t n = write(fds[1], message.data() + at, message.size() - at);
-      if (n <= 0) break;
-      at += std::size_t(n);
-    }
-    _exit(code);
-  }
-  close(fds[1]);
-  // Wall-clock time too: a child that waits (on a lock another thread of this
-  // process held at the fork) uses no CPU time and would never be stopped.
   std::string message;
   char buffer[4096];
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
@@ -224,7 +181,7 @@ void readInAChildFirst(const std::string& name) {
     const ssize_t n = read(fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
-    message.append(buffer, std::size_t(n));
+    if (message.size() < 65536) message.append(buffer, std::size_t(n));
   }
   close(fds[0]);
   if (late) kill(pid, SIGKILL);
@@ -240,7 +197,7 @@ void readInAChildFirst(const std::string& name) {
       : signal != 0       ? "crashed on it (signal " + std::to_string(signal) + ", " + strsignal(signal) + ")"
                           : "stopped with status " + std::to_string(WEXITSTATUS(status));
   throw VolumeError(name + ": corrupt OpenVDB file: OpenVDB's reader " + what +
-                    " (it was read in a separate process first)");
+                    " (it was read in a separate process first, " + probePath + ")");
 }
 
 }  // namespace
@@ -251,8 +208,8 @@ VoxelVolume readVdb(const fs::path& file, float airValue) {
   checkVdbStructure(file, name);  // before OpenVDB trusts the file's counts and lengths
   openvdb::initialize();
 
-  readInAChildFirst(name);
-  const openvdb::GridPtrVecPtr grids = readGrids(name);
+  readInAProbeFirst(name);
+  const openvdb::GridPtrVecPtr grids = readVdbGrids(name);
 
   // The grid named "density" if it is a FloatGrid, else the first FloatGrid.
   openvdb::FloatGrid::Ptr grid;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -19,9 +20,11 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <openvdb/io/File.h>
+#include <openvdb/tools/Prune.h>
 #include <zlib.h>
 
 #include "TestFiles.h"
@@ -786,6 +789,56 @@ TEST(VolumeIOVdb, AChunkThatWouldOverflowOpenVdbsBufferIsRefusedWithoutReadingIt
   // And a good file still reads, after its check in the child.
   ScratchDir dir;
   writeVdb(sampleVolume(), dir.path() / "ok.vdb");
+  expectSame(readVdb(dir.path() / "ok.vdb", -1000.f), sampleVolume());
+}
+
+// The probe that reads a .vdb first is a process of its own, not a fork of
+// this one: a fork inherits whatever TBB's workers (busy here on another
+// thread's parallel loop, as OpenVDB's own are after any tree operation) held
+// at that instant, and a forked child that then ran OpenVDB's parallel tree
+// code waited a minute on CI. Twenty reads of a file of many leaves while TBB
+// is busy all finish, each well inside the probe's wall-clock limit.
+TEST(VolumeIOVdb, AReadWhileTbbIsBusyOnAnotherThreadFinishes) {
+  ScratchDir dir;
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(-1000.f);
+  grid->setName("density");
+  for (int i = 0; i < 64; i += 2)
+    for (int j = 0; j < 64; j += 3)
+      for (int k = 0; k < 64; k += 5) grid->tree().setValue(openvdb::Coord(i, j, k), float(i + j + k));
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+  {
+    openvdb::io::File f((dir.path() / "leaves.vdb").string());
+    f.write(openvdb::GridPtrVec{grid});
+    f.close();
+  }
+  std::atomic<bool> stop{false};
+  std::thread busy([&] {
+    while (!stop.load()) {
+      auto copy = grid->deepCopy();  // OpenVDB's parallel copy, then its parallel clear
+      openvdb::tools::pruneInactive(copy->tree());
+    }
+  });
+  for (int n = 0; n < 20; ++n) {
+    const auto start = std::chrono::steady_clock::now();
+    const VoxelVolume v = readVdb(dir.path() / "leaves.vdb", -1000.f);
+    EXPECT_EQ(v.valueAt(62, 63, 60), 185.f);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30)) << "read " << n;
+  }
+  stop.store(true);
+  busy.join();
+}
+
+// Without its probe readVdb reads no file, and says where it looked.
+TEST(VolumeIOVdb, AMissingProbeIsAClearError) {
+  ScratchDir dir;
+  writeVdb(sampleVolume(), dir.path() / "ok.vdb");
+  const fs::path missing = dir.path() / "no-such-probe";
+  setenv("MILLSIM_VDB_PROBE", missing.c_str(), 1);
+  const std::string message = errorOf([&] { (void)readVdb(dir.path() / "ok.vdb", -1000.f); });
+  unsetenv("MILLSIM_VDB_PROBE");
+  EXPECT_NE(message.find("millsim-vdb-probe is not at " + missing.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("set MILLSIM_VDB_PROBE"), std::string::npos) << message;
   expectSame(readVdb(dir.path() / "ok.vdb", -1000.f), sampleVolume());
 }
 
