@@ -8,6 +8,7 @@
 
 #include "Commands.h"
 #include "NumberArgs.h"
+#include "TrajectoryReach.h"
 #include "ImageArgs.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/devices/HapticsDevice.h"
@@ -63,8 +64,10 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       // The tool is drawn where the renderer's last frame put it.
       std::optional<ToolView> tool;
       std::shared_ptr<const Trajectory> trajectory;
-      if (!args->trajectory.empty())
+      if (!args->trajectory.empty()) {
         trajectory = std::make_shared<const Trajectory>(Trajectory::load(args->trajectory));
+        warnOutOfReach(*r.scene, *trajectory, args->trajectory, "render");
+      }
       else if (HapticsDevice* device = findDevice(*r.scene))
         trajectory = device->trajectory();
       if (trajectory) {

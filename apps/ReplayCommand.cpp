@@ -10,6 +10,7 @@
 #include "Commands.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
+#include "TrajectoryReach.h"
 #include "RunSummary.h"
 #include "SaveVolume.h"
 #include "millsim/core/NodeRegistry.h"
@@ -70,6 +71,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         recorded = RecordedRun::parse(text, args->trajectory);
       else
         trajectory = Trajectory::parse(text, args->trajectory);
+      if (trajectory) warnOutOfReach(*r.scene, *trajectory, args->trajectory, "replay");
       std::ofstream log;
       if (!args->log.empty()) {
         log.open(args->log, std::ios::binary);

@@ -13,6 +13,7 @@
 #include "Commands.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
+#include "TrajectoryReach.h"
 #include "RunSummary.h"
 #include "SaveVolume.h"
 #include "millsim/core/NodeRegistry.h"
@@ -32,7 +33,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
   struct Args {
     bool strict = false, noGraphics = false, noWindow = false, noSound = false;
-    std::string scene, log, trajectory, size, soundOut, saveVolume, report;
+    std::string scene, log, trajectory, device, size, soundOut, saveVolume, report;
     double duration = 0.0;
     SessionOptions session;
   };
@@ -44,7 +45,14 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       ->check(finiteIn(0.001, 1e6, "s"));
   cmd->add_option("--log", args->log, "Log CSV to write (one row per haptic frame, with period_us)");
   cmd->add_option("--renderer", args->session.renderer, "Use a default renderer of this type instead of the scene's");
-  cmd->add_option("--trajectory", args->trajectory, "Trajectory CSV for a simulated device instead of its url");
+  cmd->add_option("--trajectory", args->trajectory,
+                  "Trajectory CSV: a simulated device follows it instead of its url; any other device is replaced "
+                  "by it for this run (played open loop, as replay does)");
+  cmd->add_option("--device", args->device,
+                  "Drive this run with a simulated device in place of the scene's (its renderer, tool, limits and "
+                  "calibration stay): trajectory (open loop), hand (a simulated hand pulled along the trajectory) "
+                  "or mouse (the window's mouse)")
+      ->check(CLI::IsMember({"trajectory", "hand", "mouse"}));
   cmd->add_flag("--no-graphics", args->noGraphics, "Run without a graphics thread (no window, no GL context, no meshes)");
   cmd->add_flag("--no-window", args->noWindow,
                 "Draw offscreen (OSMesa) even when a display is available (the window opens when DISPLAY or "
@@ -86,7 +94,16 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
         o.title = windowTitle(*r.scene, args->scene);
         if (const char* stall = std::getenv("MILLSIM_TEST_STALL_WINDOW_MS")) o.stallWindowMs = std::atoi(stall);
       }
-      if (!args->trajectory.empty()) o.trajectory = std::make_shared<const Trajectory>(Trajectory::load(args->trajectory));
+      if (args->device == "mouse" && !args->trajectory.empty())
+        throw std::invalid_argument("--device mouse follows the window's mouse, not --trajectory; drop one of them");
+      o.deviceSource = args->device == "trajectory" ? SessionOptions::DeviceSource::Trajectory
+                       : args->device == "hand"     ? SessionOptions::DeviceSource::Hand
+                       : args->device == "mouse"    ? SessionOptions::DeviceSource::Mouse
+                                                    : SessionOptions::DeviceSource::Scene;
+      if (!args->trajectory.empty()) {
+        o.trajectory = std::make_shared<const Trajectory>(Trajectory::load(args->trajectory));
+        warnOutOfReach(*r.scene, *o.trajectory, args->trajectory, "run");
+      }
       if (!args->log.empty()) {
         log.open(args->log, std::ios::binary);
         if (!log) throw std::runtime_error(args->log + ": cannot write the log file");

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "millsim/core/Scene.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/devices/Trajectory.h"
 #include "millsim/std/Transform.h"
 #include "millsim/volume/PlacedVolumes.h"
 #include "millsim/volume/PointShell.h"
@@ -43,6 +45,48 @@ void findDevices(Node& n, const TransformingNode* around, std::vector<FoundDevic
 }
 
 std::string mm(double metres) { return formatNumber(std::round(metres * 1e4) / 10.0); }
+
+struct WorldBox {
+  glm::dvec3 lo, hi;
+  const VolumeObject* node;
+};
+
+// Each loaded volume's box in the world (centred on its local origin, as X3D's VolumeData).
+std::vector<WorldBox> volumeBoxes(const std::vector<PlacedVolume>& volumes) {
+  std::vector<WorldBox> boxes;
+  for (const PlacedVolume& v : volumes) {
+    const glm::dvec3 half = v.node->size() * 0.5;
+    WorldBox b{glm::dvec3(INFINITY), glm::dvec3(-INFINITY), v.node};
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 local((c & 1) ? half.x : -half.x, (c & 2) ? half.y : -half.y, (c & 4) ? half.z : -half.z);
+      const glm::dvec3 w(v.localToWorld * glm::dvec4(local, 1.0));
+      b.lo = glm::min(b.lo, w), b.hi = glm::max(b.hi, w);
+    }
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
+// The least distance from any of the trajectory's positions, times `scale`
+// and then placed by the device's calibration, to any box.
+double nearest(const Trajectory& trajectory, const HapticsDevice* device, const std::vector<WorldBox>& boxes,
+               double scale, const VolumeObject** which) {
+  double best = INFINITY;
+  for (const TrajectorySample& s : trajectory.samples())
+    for (const WorldBox& b : boxes) {
+      const Pose raw{s.pose.position * scale, s.pose.orientation};
+      const glm::dvec3 p = device ? device->calibrate(raw).position : raw.position;
+      const double d = glm::length(glm::max(glm::dvec3(0.0), glm::max(b.lo - p, p - b.hi)));
+      if (d < best) best = d, *which = b.node;
+    }
+  return best;
+}
+
+const HapticsDevice* firstDevice(const Scene& scene) {
+  std::vector<FoundDevice> devices;
+  findDevices(*scene.root, nullptr, devices);
+  return devices.empty() ? nullptr : devices.front().device;
+}
 
 }  // namespace
 
@@ -100,9 +144,17 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
                        "the VolumeObject a smaller voxelSize (docs/lessons.md, \"A real CT\") or use a finer scan");
   }
 
+  if (const auto trajectory = device.trajectory()) {
+    const std::string warning = trajectoryReachWarning(scene, *trajectory, "its trajectory");
+    if (!warning.empty()) sink.warning(device.location(), device.typeName() + ": " + warning);
+  }
+
   // The renderer's estimated frame cost against the device's frame budget.
   const HapticsRendererNode* renderer = device.hapticsRenderer.get().get();
   if (!renderer) return;
+  // A burr the renderer cannot carry: `millsim run` would refuse it.
+  if (const std::string why = renderer->cannotCarry(tool.geometry()); !why.empty())
+    sink.error(renderer->location(), why + " (the burr: " + describe(burrNode) + ")");
   FrameCostContext context;
   context.tool = tool.geometry();
   for (const PlacedVolume& v : volumes) {
@@ -123,6 +175,32 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
                      formatNumber(std::round(cost.seconds * 1e7) / 10.0) + " us (" + cost.model +
                      "), over the frame budget of " + formatNumber(std::round(budget * 1e7) / 10.0) +
                      " us; " + cost.advice + ", or lower desiredHapticsRate");
+}
+
+std::string trajectoryReachWarning(const Scene& scene, const Trajectory& trajectory, const std::string& label) {
+  const std::vector<WorldBox> boxes = volumeBoxes(placedVolumes(scene));
+  if (boxes.empty() || trajectory.samples().empty()) return {};
+  const HapticsDevice* device = firstDevice(scene);
+  const MillTool defaultTool;
+  const MillTool& tool = device && device->tool.get() ? *device->tool.get() : defaultTool;
+  const double reach = double(tool.tipRadius.get()) + double(tool.shaftLength.get());
+  const VolumeObject* which = nullptr;
+  const double distance = nearest(trajectory, device, boxes, 1.0, &which);
+  if (distance <= reach) return {};
+  std::string sentence = label + " never comes within the tool's reach (" + mm(reach) + " mm) of a volume: its " +
+                         "nearest position is " + mm(distance) + " mm from the " + describe(*which) +
+                         "; positions are read in metres";
+  struct Unit {
+    const char* name;
+    double metres;
+  };
+  for (const Unit u : {Unit{"mm", 1e-3}, Unit{"cm", 1e-2}, Unit{"um", 1e-6}}) {
+    const VolumeObject* near = nullptr;
+    if (nearest(trajectory, device, boxes, u.metres, &near) <= reach)
+      return sentence + ". Read in " + u.name + " it would reach the " + describe(*near) + ": if the file is in " +
+             u.name + ", say so in its header (t,x_" + u.name + ",y_" + u.name + ",z_" + u.name + ",qw,qx,qy,qz,button)";
+  }
+  return sentence + "; check its positions against the volume's place (a Transform above the VolumeObject moves it)";
 }
 
 }  // namespace millsim

@@ -19,6 +19,10 @@ void HapticsDevice::initialize(DiagnosticSink& sink) {
                                  formatNumber(defaults.shaftLength.get()) +
                                  " m); add <MillTool/> inside it to say which tool it holds");
   }
+  if (stylus.get())
+    sink.warning(stylus.get()->location(),
+                 typeName() + "'s stylus (what H3DAPI draws at the device) is not drawn: MillSim draws the MillTool's "
+                              "burr and shaft at the device; the stylus is kept only so that the scene also loads in H3DAPI");
   if (!hapticsRenderer.get())
     sink.warning(location(), typeName() + " has no haptics renderer: `millsim run`, `replay` and `render` refuse it "
                                           "unless given --renderer TYPE (add e.g. <SurfacePointRenderer/> inside it)");

@@ -50,9 +50,9 @@ public:
   SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
                              "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
   SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N); live: a change applies from the next frame.",
-                     Range::openClosed(0, 50).in(quantity::force)};
+                     Range::openClosed(0, 50).in(quantity::force).usually(1, 50, "N")};
   SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m); live.",
-                      Range::openClosed(0, 5).in(quantity::torque)};
+                      Range::openClosed(0, 5).in(quantity::torque).usually(0.02, 5, "N·m")};
   SFFloat positionScale{this, "positionScale", Access::InputOutput, 1.f,
                         "Scene metres per device metre: scene position = positionScale · (orientationCalibration · "
                         "raw) + positionCalibration. The device gets positionScale × the rendered force (energy "
@@ -70,6 +70,12 @@ public:
   SFNodeOf<MillTool> tool{this, "tool", Access::InputOutput, "The milling tool the device holds."};
   SFNodeOf<HapticsRendererNode> hapticsRenderer{this, "hapticsRenderer", Access::InputOutput,
                                                 "The algorithm that computes force and torque; live in the window of millsim run (keys 1-3, or a new node of a prepared type)."};
+  // H3DAPI's stylus field, so that an H3DAPI scene's <Group containerField="stylus"> loads.
+  SFNodeOf<ChildNode> stylus{this, "stylus", Access::InputOutput,
+                             "H3DAPI's stylus: what H3D draws at the device's pose. Accepted so that an H3DAPI scene "
+                             "loads, but not drawn: MillSim draws the MillTool's burr and shaft there (a warning says "
+                             "so)."};
+  bool showsField(const Field& f) const override { return &f != &stylus; }
 
   HapticsDevice() { positionCalibration.scaleInto(positionScale); }
 

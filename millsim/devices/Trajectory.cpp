@@ -30,6 +30,42 @@ std::vector<std::string_view> splitCsv(std::string_view line) {
   }
   return out;
 }
+
+// A header may name the length unit of its positions on x, y and z alike
+// (t,x_mm,y_mm,z_mm,...): a spreadsheet in millimetres is then read as it
+// means. Without one, metres, as a run's log writes them. The cells are
+// renamed to x, y, z for the column check that follows; returns metres per unit.
+double headerLengthUnit(std::vector<std::string_view>& cells, const std::string& header) {
+  struct Unit {
+    std::string_view name;
+    double metres;
+  };
+  static constexpr Unit kUnits[] = {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}};
+  const char* const axes[] = {"x", "y", "z"};
+  std::string_view unit;
+  int named = 0;
+  for (int a = 0; a < 3 && std::size_t(a + 1) < cells.size(); ++a) {
+    std::string_view& cell = cells[std::size_t(a + 1)];
+    if (cell.size() < 3 || cell.substr(0, 2) != std::string(axes[a]) + "_") continue;
+    const std::string_view u = cell.substr(2);
+    if (std::none_of(std::begin(kUnits), std::end(kUnits), [&](const Unit& k) { return k.name == u; }))
+      throw TrajectoryError(header + "column '" + std::string(cell) + "' names the length unit '" + std::string(u) +
+                            "'; the units a header may name are m, cm, mm and um (x_mm,y_mm,z_mm)");
+    if (named > 0 && u != unit)
+      throw TrajectoryError(header + "x, y and z name different units ('" + std::string(unit) + "' and '" +
+                            std::string(u) + "'); name one unit on all three");
+    unit = u, ++named;
+    cell = axes[a];
+  }
+  if (named == 0) return 1.0;
+  if (named != 3)
+    throw TrajectoryError(header + "only some of x, y and z name a unit ('" + std::string(unit) +
+                          "'); name it on all three (x_" + std::string(unit) + ",y_" + std::string(unit) + ",z_" +
+                          std::string(unit) + ")");
+  for (const Unit& k : kUnits)
+    if (k.name == unit) return k.metres;
+  return 1.0;
+}
 }  // namespace
 
 Trajectory::Trajectory(std::vector<TrajectorySample> samples) : samples_(std::move(samples)) {
@@ -101,6 +137,7 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
   if (bom) rest.remove_prefix(3);
   int lineNo = 0;
   bool sawHeader = false;
+  double metresPerUnit = 1.0;  // the header's length unit (x_mm,y_mm,z_mm: 0.001)
   const auto expected = splitCsv(kHeader);
   while (!rest.empty()) {
     const std::size_t newline = rest.find('\n');
@@ -114,6 +151,7 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
     if (!sawHeader) {
       // Every column is used, in this order; an unknown one is an error rather than silently dropped.
       const std::string header = where + "expected the header '" + kHeader + "', found '" + std::string(l) + "': ";
+      metresPerUnit = headerLengthUnit(cells, header);
       for (std::size_t c = 0; c < cells.size(); ++c) {
         if (c < expected.size() && cells[c] == expected[c]) continue;
         const bool known = std::find(expected.begin(), expected.end(), cells[c]) != expected.end();
@@ -148,7 +186,7 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& file) {
       throw TrajectoryError(where + "more than " + std::to_string(Trajectory::kMaxRows) + " rows");
     TrajectorySample s;
     s.t = v[0];
-    s.pose.position = glm::dvec3(v[1], v[2], v[3]);
+    s.pose.position = glm::dvec3(v[1], v[2], v[3]) * metresPerUnit;
     const glm::dquat q(v[4], v[5], v[6], v[7]);
     s.pose.orientation = q / checkRow(where, s.t, s.pose.position, q, rows.empty() ? NAN : rows.back().t);
     if (v[8] != 0.0 && v[8] != 1.0)

@@ -95,6 +95,13 @@ public:
   // Estimated compute time of this configuration's worst frame; `millsim
   // check` warns when it exceeds the device's frame budget (1/desiredHapticsRate).
   virtual FrameCostEstimate estimateFrameCost(const FrameCostContext&) const { return {}; }
+  // Why this renderer cannot carry `tool` (a burr head it cannot represent),
+  // or empty when it can: compile() refuses such a tool with this sentence,
+  // and `millsim check` reports it at the renderer's line before a run would.
+  virtual std::string cannotCarry(const ToolGeometry& tool) const {
+    (void)tool;
+    return {};
+  }
 };
 
 // Replaces NaN/Inf in an output with zero force and torque and flags it: no

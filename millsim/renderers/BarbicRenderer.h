@@ -32,7 +32,7 @@ public:
                            Range::openClosed(0, 1e7).in(quantity::linearStiffness)};
   SFFloat couplingStiffness{this, "couplingStiffness", Access::InitializeOnly, 2000.f,
                             "Virtual coupling spring between tool and device (N/m): the stiffness the user feels.",
-                            Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
+                            Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000, "N/m")};
   SFFloat couplingDamping{this, "couplingDamping", Access::InitializeOnly, 1.f,
                           "Virtual coupling damper on the tool's velocity relative to the device's (N·s/m).",
                           Range::closed(0, 1e4).in(quantity::linearStiffness)};

@@ -514,14 +514,17 @@ const NodeType& LineProxyRenderer::type() {
   return t;
 }
 
+// The burr is a sphere about the tip vertex (its proxy keeps the tip
+// tipRadius off the surface, eq. 3-4): no other head can be represented.
+std::string LineProxyRenderer::cannotCarry(const ToolGeometry& tool) const {
+  if (tool.round()) return {};
+  return "LineProxyRenderer cannot represent the MillTool shape \"" + std::string(burrShapeName(tool.shape)) +
+         "\": it models the burr as a sphere about its tip vertex; use shape \"round\", or SurfacePointRenderer "
+         "or BarbicRenderer";
+}
+
 std::unique_ptr<HapticAlgorithm> LineProxyRenderer::compile(const ToolGeometry& tool, HapticScene&) const {
-  // The burr is a sphere about the tip vertex (its proxy keeps the tip
-  // tipRadius off the surface, eq. 3-4): no other head can be represented.
-  if (!tool.round())
-    throw std::runtime_error("LineProxyRenderer cannot represent the MillTool shape \"" +
-                             std::string(burrShapeName(tool.shape)) +
-                             "\": it models the burr as a sphere about its tip vertex; use shape \"round\", "
-                             "or SurfacePointRenderer or BarbicRenderer");
+  if (const std::string why = cannotCarry(tool); !why.empty()) throw std::runtime_error(why);
   return std::make_unique<LineProxyAlgorithm>(
       LineProxyAlgorithm::Params{
           .vertices = vertexCount.get(),

@@ -25,7 +25,8 @@ public:
   SFInt32 rotationSteps{this, "rotationSteps", Access::InputOutput, 10,
                         "NUMBER_OF_ROTATION_STEPS of the first-contact search (eq. 4).", Range::closed(1, 100)};
   SFFloat springConstant{this, "springConstant", Access::InputOutput, 2000.f,
-                         "k_spring of eq. 6 and eq. 10 (N/m).", Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
+                         "k_spring of eq. 6 and eq. 10 (N/m).",
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000, "N/m")};
   SFInt32 proxyIterations{this, "proxyIterations", Access::InputOutput, 6,
                           "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::closed(1, 100)};
 
@@ -51,6 +52,7 @@ public:
                          Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
+  std::string cannotCarry(const ToolGeometry& tool) const override;
 };
 
 }  // namespace millsim

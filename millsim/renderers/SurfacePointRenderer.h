@@ -30,7 +30,7 @@ public:
   SFFloat springConstant{this, "springConstant", Access::InputOutput, 2400.f,
                          "The spring (N/m): the felt stiffness with deepestPoints; k_spring of eq. 14 without "
                          "(then felt about k times the colliding fraction: 20000 N/m feels like 2400).",
-                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000, "N/m")};
 
   SFBool deepestPoints{this, "deepestPoints", Access::InitializeOnly, true,
                        "Push the tool out by k times its depth: each contact (the burr's or shaft's deepest line "

@@ -8,7 +8,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "millsim/devices/HandDevice.h"
 #include "millsim/devices/HapticsDevice.h"
+#include "millsim/devices/MousePointer.h"
 #include "millsim/devices/TrajectoryDevice.h"
 #include "millsim/graphics/DrawnFields.h"
 #include "millsim/graphics/SceneView.h"
@@ -100,20 +102,30 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
 
   std::unique_ptr<DeviceDriver> driver;
   HapticsDevice& device = *run.device;
+  deviceName_ = device.typeName() + (device.defName().empty() ? "" : " '" + device.defName() + "'");
   if (source == Source::Device) {
-    DriverOptions d{options.trajectory.get(), nullptr};
-    const auto start = device.pointerStart();
-    if (start && options.display == SessionOptions::Display::Window) {
-      pointer_ = std::make_unique<PointerInput>(start->pose);
-      d.pointer = pointer_.get();
-    }
-    driver = device.openDriver(d);
-    const std::string opened = device.noteOpened();
-    if (!opened.empty() && options.notices) *options.notices << opened << "\n";
-    if (pointer_ && device.followsPointer()) {
-      graphicsOptions_.pointer = pointer_.get();
-      graphicsOptions_.pointerStart = start->pose;
-      graphicsOptions_.pointerDepthStep = start->depthStep;
+    using DeviceSource = SessionOptions::DeviceSource;
+    DeviceSource replaced = options.deviceSource;
+    // A trajectory for a device that does not follow one replaces it.
+    if (replaced == DeviceSource::Scene && options.trajectory && !device.followsTrajectory())
+      replaced = DeviceSource::Trajectory;
+    if (replaced == DeviceSource::Scene) {
+      DriverOptions d{options.trajectory.get(), nullptr};
+      const auto start = device.pointerStart();
+      if (start && options.display == SessionOptions::Display::Window) {
+        pointer_ = std::make_unique<PointerInput>(start->pose);
+        d.pointer = pointer_.get();
+      }
+      driver = device.openDriver(d);
+      const std::string opened = device.noteOpened();
+      if (!opened.empty() && options.notices) *options.notices << opened << "\n";
+      if (pointer_ && device.followsPointer()) {
+        graphicsOptions_.pointer = pointer_.get();
+        graphicsOptions_.pointerStart = start->pose;
+        graphicsOptions_.pointerDepthStep = start->depthStep;
+      }
+    } else {
+      driver = openReplacedDevice(device, replaced);
     }
   } else if (source == Source::Trajectory) {
     driver = device.followsTrajectory() ? device.openDriver(DriverOptions{trajectory})
@@ -132,7 +144,6 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
   if (options.prepareRenderers || window || recordedSwaps_ || recordedBurrSwaps_)
     pool_ = std::make_unique<RendererPool>(scene, run, run.algorithm.get());
   rendererName_ = run.rendererName;
-  deviceName_ = device.typeName() + (device.defName().empty() ? "" : " '" + device.defName() + "'");
   loop_ = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
 
   // Assessment counts on the scene thread, from blocks the loop publishes.
@@ -163,6 +174,43 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
   }
   events_ = std::make_unique<EventClock>(scene);
   live_ = std::make_unique<LiveUpdates>(run, *loop_);
+}
+
+std::unique_ptr<DeviceDriver> Session::openReplacedDevice(const HapticsDevice& device,
+                                                         SessionOptions::DeviceSource replaced) {
+  using DeviceSource = SessionOptions::DeviceSource;
+  const std::string sceneDevice = deviceName_;
+  std::unique_ptr<DeviceDriver> driver;
+  std::string kind;
+  if (replaced == DeviceSource::Mouse) {
+    if (options_.display != SessionOptions::Display::Window)
+      throw DeviceError("the mouse follows the pointer in the window of `millsim run`, and there is none (no "
+                        "DISPLAY, or --no-window); replace the device with a trajectory or a hand instead");
+    const auto start = device.pointerStart();
+    const HapticsDevice::PointerStart from = start ? *start : HapticsDevice::PointerStart{};
+    pointer_ = std::make_unique<PointerInput>(from.pose);
+    driver = MousePointerFields::followPointer(*pointer_);
+    graphicsOptions_.pointer = pointer_.get();
+    graphicsOptions_.pointerStart = from.pose;
+    graphicsOptions_.pointerDepthStep = from.depthStep;
+    kind = "MouseDevice";
+  } else {
+    const std::shared_ptr<const Trajectory> trajectory = options_.trajectory ? options_.trajectory : device.trajectory();
+    if (!trajectory)
+      throw DeviceError(std::string("a ") + (replaced == DeviceSource::Hand ? "hand" : "trajectory") + " in place of " +
+                        sceneDevice + " needs a trajectory to follow: pass --trajectory T.csv");
+    if (replaced == DeviceSource::Hand) {
+      const auto* hand = dynamic_cast<const HandDevice*>(&device);
+      driver = makeHandDriver(*trajectory, hand ? hand->model() : HandModel{}, false);
+      kind = "HandDevice";
+    } else {
+      driver = makeTrajectoryDriver(*trajectory, false);
+      kind = "TrajectoryDevice";
+    }
+  }
+  deviceName_ = kind + " in place of " + sceneDevice;
+  if (options_.notices) *options_.notices << "the scene's " << sceneDevice << " is replaced by a " << kind << " for this run\n";
+  return driver;
 }
 
 Session::~Session() {

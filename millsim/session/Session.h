@@ -47,6 +47,7 @@
 namespace millsim {
 
 class EventClock;
+class HapticsDevice;
 class FieldWatch;
 class FrameLogWriter;
 class HudFeed;
@@ -61,8 +62,17 @@ struct SessionOptions {
   std::string renderer;   // a default renderer of this registered type instead of the device's
   double rate = 0.0;      // Hz; 0: the device's desiredHapticsRate
   bool timing = true;     // measure compute time per frame (replay leaves it off: the log then repeats byte for byte)
-  // openDevice: a simulated device follows this instead of its url.
+  // openDevice: a simulated device follows this instead of its url; any other
+  // device is replaced by it (played open loop, as replay does).
   std::shared_ptr<const Trajectory> trajectory;
+  // openDevice: what drives the run in place of the scene's device node (its
+  // renderer, tool, limits and calibration stay), so that one lesson file
+  // serves students at a device and tests or demonstrations without one:
+  // Trajectory plays `trajectory` (or the device's own) open loop, Hand pulls
+  // a simulated hand along it (the HandDevice's fields, else HandDevice's
+  // defaults), Mouse follows the window's mouse (needs Display::Window).
+  enum class DeviceSource { Scene, Trajectory, Hand, Mouse };
+  DeviceSource deviceSource = DeviceSource::Scene;
   // replay and review: stop after this trajectory time (s).
   double until = std::numeric_limits<double>::infinity();
   std::ostream* log = nullptr;      // the frame log (FrameLog.h), one row a frame; written on the scene thread
@@ -176,6 +186,8 @@ private:
   // Before the first wall-clock frame: the events' first tick, then graphics.
   void beginWallClock();
   void startGraphics();
+  // openDevice with SessionOptions::deviceSource other than Scene: the driver in the device node's place.
+  std::unique_ptr<DeviceDriver> openReplacedDevice(const HapticsDevice& device, SessionOptions::DeviceSource replaced);
   std::size_t drain();
   // The newest frame into the scene: device fields, regions, removed volumes.
   void publishFrame();

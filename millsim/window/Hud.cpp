@@ -32,12 +32,14 @@ void drawHelpLine(const HudExtras& extras) {
   std::string keys;
   for (std::size_t i = 0; i < extras.renderers.size(); ++i)
     keys += std::to_string(i + 1) + " " + extras.renderers[i] + "   ";
-  std::string help = keys + "|  drag turn · wheel zoom · shift/middle-drag pan · PgUp/PgDn viewpoint · F frame all · "
-                            "C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move cut · E force on/off · "
-                            "M millable on/off · B burr shape · H HUD · Esc quit";
+  // The view's drags differ when the mouse is the tool (SdlWindow.cpp, motion()).
+  const char* view = extras.pointer ? "Alt+drag or middle-drag turn view · Shift+middle-drag pan · wheel zoom · "
+                                    : "drag turn · Shift+drag or middle-drag pan · wheel zoom · ";
+  std::string help = keys + "|  " + view +
+                     "PgUp/PgDn viewpoint · F frame all · C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move "
+                     "cut · E force on/off · M millable on/off · B burr shape · H HUD · Esc quit";
   if (extras.pointer)
-    help += "  |  mouse tool: move = burr · left/Space = mill · right-drag turn tool · Ctrl+wheel depth · "
-            "Alt/middle-drag turn view";
+    help += "  |  mouse tool: move = burr · left/Space = mill · right-drag turn tool · Ctrl+wheel depth";
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.f, size.y), ImGuiCond_Always, ImVec2(0.f, 1.f));
   ImGui::SetNextWindowSize(ImVec2(size.x, 0.f), ImGuiCond_Always);

@@ -341,7 +341,11 @@ private:
       return;
     }
     if (!navigate_) return;
-    const bool pan = middleDrag_ || (leftDrag_ && (mod & KMOD_SHIFT));
+    // Without the mouse as a tool: drag turns, Shift+drag or middle-drag pans.
+    // With it the left button mills, so Alt+drag or middle-drag turns and
+    // Shift with either pans (the help line says the same, Hud.cpp).
+    const bool shift = (mod & KMOD_SHIFT) != 0;
+    const bool pan = options_.pointer ? shift && (leftDrag_ || middleDrag_) : middleDrag_ || (leftDrag_ && shift);
     if (pan)
       examine_.pan(dx, dy, height_);
     else if (leftDrag_ || (options_.pointer && middleDrag_))

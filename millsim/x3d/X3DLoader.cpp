@@ -5,6 +5,7 @@
 #include <libxml/xmlerror.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -528,6 +529,7 @@ private:
       const std::string value = attrValue(doc.xml, a);
       try {
         f->setFromSceneText(value, doc.units);
+        warnOfUnitSlip(*f, node, at, value, doc.units);
       } catch (const ValueError& e) {
         if (readUnquotedString(*f, value, node, at)) continue;
         std::string shown = value.size() > 40 ? value.substr(0, 37) + "..." : value;
@@ -537,6 +539,35 @@ private:
                             (converted ? " (in SI units, after converting from the file's <unit> statements)" : ""));
       }
     }
+  }
+
+  // A value ten times or more outside what lessons use (Range::usually) is
+  // most often written in another unit than the one it is read in: a torque
+  // limit meant in N·m in a file whose <unit> makes lengths millimetres.
+  void warnOfUnitSlip(const Field& f, const Node& node, const SourceLocation& at, const std::string& text,
+                      const UnitScale& units) {
+    const Range* r = f.range();
+    if (!r || !r->usualUnit || (f.type() != FieldType::SFFloat && f.type() != FieldType::SFDouble)) return;
+    double v = 0.0;
+    try {
+      v = std::stod(f.toString());
+    } catch (const std::exception&) {
+      return;
+    }
+    const bool low = v > 0.0 && v * 10.0 <= r->usualLo, high = v >= r->usualHi * 10.0;
+    if (!low && !high) return;
+    const double factor = units.factor(r->quantity);
+    std::string read = "'" + text + "'";
+    if (factor != 1.0) read += " (in this file's <unit> statements: " + formatNumber(v) + " " + r->usualUnit + ")";
+    else read += " " + std::string(r->usualUnit);
+    sink_.warning(at, std::string(f.name()) + " of " + node.typeName() + " is " + read + ", " +
+                          formatNumber(std::round((low ? r->usualLo / v : v / r->usualHi) * 10.0) / 10.0) +
+                          " times " + (low ? "below" : "above") + " the usual " + formatNumber(r->usualLo) + " to " +
+                          formatNumber(r->usualHi) + " " + r->usualUnit + ": is it in the unit the file means? " +
+                          (units.si() ? "This file is in SI units (m, N, N·m)"
+                                      : "This file's <unit> statements scale its lengths by " +
+                                            formatNumber(units.length) + " m and its forces by " +
+                                            formatNumber(units.force) + " N, and every value with them"));
   }
 
   // H3DAPI files often write one MFString item unquoted (url='Cylinder.x3d');

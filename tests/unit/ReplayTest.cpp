@@ -105,6 +105,28 @@ TEST(Trajectory, AcceptsAByteOrderMarkAndRefusesUnknownColumns) {
   EXPECT_NE(errorOf(kHeader + "0,0,0,0,1,0,0,0,0,7\n").find("t.csv:2: expected 9 columns"), std::string::npos);
 }
 
+// Issue 47, part 3: a header may say its positions' unit, on x, y and z alike.
+TEST(Trajectory, AHeaderMayNameTheLengthUnit) {
+  const auto mm = Trajectory::parse("t,x_mm,y_mm,z_mm,qw,qx,qy,qz,button\n0,1.5,9,-2,1,0,0,0,1\n", "mm.csv");
+  EXPECT_LT(glm::length(mm.samples()[0].pose.position - glm::dvec3(1.5e-3, 9e-3, -2e-3)), 1e-15);
+  const auto um = Trajectory::parse("t,x_um,y_um,z_um,qw,qx,qy,qz,button\n0,100,0,0,1,0,0,0,1\n", "um.csv");
+  EXPECT_DOUBLE_EQ(um.samples()[0].pose.position.x, 1e-4);
+  const auto m = Trajectory::parse("t,x_m,y_m,z_m,qw,qx,qy,qz,button\n0,0.25,0,0,1,0,0,0,1\n", "m.csv");
+  EXPECT_EQ(m.samples()[0].pose.position.x, 0.25);
+  EXPECT_NE(errorOf("t,x_in,y_in,z_in,qw,qx,qy,qz,button\n0,1,0,0,1,0,0,0,1\n")
+                .find("column 'x_in' names the length unit 'in'; the units a header may name are m, cm, mm and um"),
+            std::string::npos);
+  EXPECT_NE(errorOf("t,x_mm,y_cm,z_mm,qw,qx,qy,qz,button\n0,1,0,0,1,0,0,0,1\n")
+                .find("x, y and z name different units ('mm' and 'cm')"),
+            std::string::npos);
+  EXPECT_NE(errorOf("t,x_mm,y,z,qw,qx,qy,qz,button\n0,1,0,0,1,0,0,0,1\n")
+                .find("only some of x, y and z name a unit ('mm'); name it on all three (x_mm,y_mm,z_mm)"),
+            std::string::npos);
+  // The position bound holds in metres: 20000 mm is 20 m.
+  EXPECT_NE(errorOf("t,x_mm,y_mm,z_mm,qw,qx,qy,qz,button\n0,20000,0,0,1,0,0,0,1\n").find("column 'x' = 20 m"),
+            std::string::npos);
+}
+
 TEST(Replay, IsByteIdenticalRunToRun) {
   const std::string scene = MILLSIM_SOURCE_DIR "/x3d/default.x3d";
   const std::string a = replayToString(scene, "");
