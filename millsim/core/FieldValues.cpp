@@ -88,6 +88,26 @@ std::string ValueLexer::nextQuotedString() {
   throw ValueError("unterminated string: a closing '\"' is missing");
 }
 
+// Force first, then mass, length, time and angle, as "N·m·s/rad" and "kg·m²" read.
+std::string siUnit(const Quantity& q) {
+  struct Base {
+    int power;
+    const char* symbol;
+  };
+  const Base bases[] = {{q.force, "N"}, {q.mass, "kg"}, {q.length, "m"}, {q.time, "s"}, {q.angle, "rad"}};
+  auto power = [](const char* symbol, int p) {
+    const char* const superscripts[] = {"", "", "²", "³", "⁴"};
+    return std::string(symbol) + (p < 5 ? superscripts[p] : "^" + std::to_string(p));
+  };
+  std::string above, below;
+  for (const Base& b : bases) {
+    if (b.power > 0) above += (above.empty() ? "" : "·") + power(b.symbol, b.power);
+    if (b.power < 0) below += (below.empty() ? "" : "·") + power(b.symbol, -b.power);
+  }
+  if (below.empty()) return above;
+  return (above.empty() ? std::string("1") : above) + "/" + below;
+}
+
 std::string Range::str() const {
   const bool hasLo = !std::isinf(lo), hasHi = !std::isinf(hi);
   if (hasLo && hasHi)

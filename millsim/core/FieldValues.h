@@ -103,15 +103,15 @@ struct Range {
   // accepts the value its bound reads as ('0.00001' is below 1e-5 as a float).
   Range asFloat() const { return {double(float(lo)), double(float(hi)), loOpen, hiOpen}; }
 
-  // The values lessons use, [usualLo, usualHi] in SI `usualUnit` ("N·m"): a
+  // The values lessons use, [usualLo, usualHi] in the quantity's SI unit: a
   // scene value ten times or more outside them is a likely unit slip (0.2
   // meant as N·m in a file whose <unit> makes it N·mm), which the loader
-  // warns of. Unset (usualUnit null) on most fields.
+  // warns of. Unset (both 0) on most fields.
   double usualLo = 0.0, usualHi = 0.0;
-  const char* usualUnit = nullptr;
-  Range usually(double usualLow, double usualHigh, const char* unit) const {
+  bool hasUsual() const { return usualHi > 0.0; }
+  Range usually(double usualLow, double usualHigh) const {
     Range r = *this;
-    r.usualLo = usualLow, r.usualHi = usualHigh, r.usualUnit = unit;
+    r.usualLo = usualLow, r.usualHi = usualHigh;
     return r;
   }
 };

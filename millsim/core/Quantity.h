@@ -11,6 +11,7 @@
 // SFRotation and MFRotation angles are angles by their type, never tagged.
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace millsim {
 
@@ -19,6 +20,9 @@ struct Quantity {
   std::int8_t angle = 0;
   std::int8_t mass = 0;
   std::int8_t force = 0;
+  // Seconds: named in the unit a field prints with (N·s/m), never converted
+  // (X3D has no time unit; time is always seconds).
+  std::int8_t time = 0;
   // Only the last number of each value carries the quantity (a plane equation's d).
   bool lastOnly = false;
   // Only the translation of a 4×4 matrix (its 4th column) carries the quantity
@@ -28,7 +32,7 @@ struct Quantity {
   // and stays -1 in any unit.
   bool minusOneIsNone = false;
 
-  bool dimensionless() const { return length == 0 && angle == 0 && mass == 0 && force == 0; }
+  bool dimensionless() const { return length == 0 && angle == 0 && mass == 0 && force == 0 && time == 0; }
   bool operator==(const Quantity&) const = default;
 };
 
@@ -39,14 +43,20 @@ inline constexpr Quantity angle{.angle = 1};
 inline constexpr Quantity mass{.mass = 1};
 inline constexpr Quantity force{.force = 1};
 inline constexpr Quantity torque{.length = 1, .force = 1};  // N·m
-// N/m, and N·s/m (time is not converted)
-inline constexpr Quantity linearStiffness{.length = -1, .force = 1};
-// N·m/rad, and N·m·s/rad
-inline constexpr Quantity angularStiffness{.length = 1, .angle = -1, .force = 1};
+inline constexpr Quantity linearStiffness{.length = -1, .force = 1};                         // N/m
+inline constexpr Quantity linearDamping{.length = -1, .force = 1, .time = 1};               // N·s/m
+inline constexpr Quantity angularStiffness{.length = 1, .angle = -1, .force = 1};           // N·m/rad
+inline constexpr Quantity angularDamping{.length = 1, .angle = -1, .force = 1, .time = 1};  // N·m·s/rad
+inline constexpr Quantity velocity{.length = 1, .time = -1};                                // m/s
+inline constexpr Quantity angularVelocity{.angle = 1, .time = -1};                          // rad/s
 inline constexpr Quantity inertia{.length = 2, .mass = 1};  // kg·m²
 // A length where -1 means "none".
 inline constexpr Quantity lengthOrNone{.length = 1, .minusOneIsNone = true};
 }  // namespace quantity
+
+// The SI unit of `q`, as fields' documentation writes it: "N·m", "N·s/m",
+// "kg·m²", "rad/s"; empty when dimensionless.
+std::string siUnit(const Quantity& q);
 
 // The size of one unit of each base quantity in SI units, as a scene's <unit>
 // statements set it (1 for each: the scene is written in SI).

@@ -74,6 +74,10 @@ void describeNode(const Node& n, int depth, std::string_view viaField, std::set<
     if (d != defaults.end() && d->second == v) continue;
     if (v.size() > 80) v = v.substr(0, 77) + "...";
     out += " " + std::string(f->name()) + "='" + v + "'";
+    // The SI unit the value is in, after any <unit> conversion (a quantity
+    // carried by only part of the value, as a plane's d, is left unnamed).
+    if (const Range* r = f->range(); r && !r->quantity.lastOnly && !r->quantity.translationOnly)
+      if (const std::string unit = siUnit(r->quantity); !unit.empty()) out += " " + unit;
   }
   out += "\n";
   for (Field* f : n.fields())

@@ -35,23 +35,23 @@ public:
   SFFloat handMass{this, "handMass", Access::InitializeOnly, 0.55f, "Mass of the hand and arm moving with the handle (kg).",
                    Range::closed(0, 10).in(quantity::mass)};
   SFFloat handDamping{this, "handDamping", Access::InitializeOnly, 10.f, "Grip damping towards the reference (N·s/m).",
-                      Range::closed(0, 1e4).in(quantity::linearStiffness)};
+                      Range::closed(0, 1e4).in(quantity::linearDamping)};
   SFFloat handStiffness{this, "handStiffness", Access::InitializeOnly, 500.f,
                         "Grip stiffness towards the reference (N/m).", Range::closed(0, 1e6).in(quantity::linearStiffness)};
   SFFloat handInertia{this, "handInertia", Access::InitializeOnly, 3e-4f,
                       "Rotational inertia of the hand about the burr centre (kg·m²).", Range::closed(0, 1).in(quantity::inertia)};
   SFFloat handAngularDamping{this, "handAngularDamping", Access::InitializeOnly, 0.02f,
-                             "Grip rotational damping (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularStiffness)};
+                             "Grip rotational damping (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularDamping)};
   SFFloat handAngularStiffness{this, "handAngularStiffness", Access::InitializeOnly, 0.3f,
                                "Grip rotational stiffness (N·m/rad).", Range::closed(0, 1000).in(quantity::angularStiffness)};
   SFFloat deviceMass{this, "deviceMass", Access::InitializeOnly, 0.15f, "Moving mass of the device (kg).",
                      Range::openClosed(0, 10).in(quantity::mass)};
   SFFloat deviceDamping{this, "deviceDamping", Access::InitializeOnly, 1.f, "Device friction as damping (N·s/m).",
-                        Range::closed(0, 1e4).in(quantity::linearStiffness)};
+                        Range::closed(0, 1e4).in(quantity::linearDamping)};
   SFFloat deviceInertia{this, "deviceInertia", Access::InitializeOnly, 1e-4f,
                         "Rotational inertia of the device about the burr centre (kg·m²).", Range::openClosed(0, 1).in(quantity::inertia)};
   SFFloat deviceAngularDamping{this, "deviceAngularDamping", Access::InitializeOnly, 0.002f,
-                               "Device rotational friction as damping (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularStiffness)};
+                               "Device rotational friction as damping (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularDamping)};
   SFFloat releaseTime{this, "releaseTime", Access::InitializeOnly, -1.f,
                       "Time (s) at which the hand lets go of the handle; negative: never.", Range::closed(-1, 1e6)};
   SFFloat outputHold{this, "outputHold", Access::InitializeOnly, 0.01f,

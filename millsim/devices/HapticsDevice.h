@@ -50,9 +50,9 @@ public:
   SFInt32 desiredHapticsRate{this, "desiredHapticsRate", Access::InitializeOnly, 1000,
                              "Haptic loop rate to run at (Hz).", Range::closed(1, 20000)};
   SFFloat forceLimit{this, "forceLimit", Access::InputOutput, 10.f, "Largest force sent to the device (N); live: a change applies from the next frame.",
-                     Range::openClosed(0, 50).in(quantity::force).usually(1, 50, "N")};
+                     Range::openClosed(0, 50).in(quantity::force).usually(1, 50)};
   SFFloat torqueLimit{this, "torqueLimit", Access::InputOutput, 0.5f, "Largest torque sent to the device (N·m); live.",
-                      Range::openClosed(0, 5).in(quantity::torque).usually(0.02, 5, "N·m")};
+                      Range::openClosed(0, 5).in(quantity::torque).usually(0.02, 5)};
   SFFloat positionScale{this, "positionScale", Access::InputOutput, 1.f,
                         "Scene metres per device metre: scene position = positionScale · (orientationCalibration · "
                         "raw) + positionCalibration. The device gets positionScale × the rendered force (energy "

@@ -22,10 +22,9 @@ public:
                          "How the tool starts (default: shaft up, +Y)."};
   SFFloat translationSpeed{this, "translationSpeed", Access::InitializeOnly, 0.005f,
                            "Burr speed at full deflection of the puck (m/s).",
-                           // Per second, so a scene's length unit converts it as a length (X3D has no time unit).
-                           Range::openClosed(0, 1).in(quantity::length)};
+                           Range::openClosed(0, 1).in(quantity::velocity)};
   SFFloat rotationSpeed{this, "rotationSpeed", Access::InitializeOnly, 1.f,
-                        "Turning rate at full twist of the puck (rad/s).", Range::closed(0, 10).in(quantity::angle)};
+                        "Turning rate at full twist of the puck (rad/s).", Range::closed(0, 10).in(quantity::angularVelocity)};
   SFFloat deadZone{this, "deadZone", Access::InitializeOnly, 0.05f,
                    "Deflection, as a fraction of full scale, below which the puck counts as at rest.",
                    Range::closed(0, 0.9)};

@@ -73,7 +73,8 @@ struct RegionAccounting::Volume {
   const TissueMap* tissues;
   double air, iso, phiScale, voxelVolume;
   BlockChannel channel{kChannelBlocks};
-  std::unordered_map<std::uint64_t, std::vector<double>> contribution;  // per block, per region (m³)
+  std::unordered_map<std::uint64_t, std::vector<double>> contribution;  // per block, per slot (m³)
+  std::vector<std::size_t> tissueSlot;  // per TissueMap entry: its slot (RegionAccounting::tissueSlots_)
   double phi(double v) const { return std::clamp((v - air) * phiScale, 0.0, 1.0); }
   glm::dvec3 world(int i, int j, int k) const {
     return glm::dvec3(localToWorld * glm::dvec4(origin->indexToLocal(glm::dvec3(i, j, k)), 1.0));
@@ -90,14 +91,49 @@ struct RegionAccounting::SoftTissue {
   openvdb::FloatGrid::Ptr fog;             // 1 on its soft voxels, 0 on those around them
   openvdb::FloatGrid::Ptr distance;        // in voxels, negative inside: how deep a voxel lies in the tissue
   std::unordered_set<std::uint64_t> swept;  // voxels the head has held
+  std::unordered_map<std::uint64_t, std::vector<glm::dvec3>> surface;  // its surface voxels (world), by wallCell
+  glm::dvec3 surfaceLo{INFINITY}, surfaceHi{-INFINITY};                // their world box
+  // The wall left between voxel `c` at `world` (cut through) and the tissue:
+  // the distance to the nearest surface voxel's centre less half a voxel (the
+  // surface lies half a voxel out); -1 beyond kWallReach. Kept per voxel: a
+  // block is counted again each time it is milled.
+  double wallAt(const openvdb::Coord& c, const glm::dvec3& world);
+  std::unordered_map<std::uint64_t, float> walls;
 };
 
 namespace {
+// A cube of kWallReach on a side: every surface voxel within kWallReach of a
+// point lies in the point's cell or one of its 26 neighbours.
+std::uint64_t wallCell(const glm::dvec3& world, int di = 0, int dj = 0, int dk = 0) {
+  const glm::dvec3 c = glm::floor(world / RegionAccounting::kWallReach);
+  auto part = [](double v, int d) { return std::uint64_t(std::uint32_t(std::int32_t(v) + d) & 0x1fffff); };
+  return part(c.x, di) | (part(c.y, dj) << 21) | (part(c.z, dk) << 42);
+}
+
 std::uint64_t voxelKey(const openvdb::Coord& c) {
   return std::uint64_t(std::uint32_t(c.x()) & 0x1fffff) | (std::uint64_t(std::uint32_t(c.y()) & 0x1fffff) << 21) |
          (std::uint64_t(std::uint32_t(c.z()) & 0x1fffff) << 42);
 }
 }  // namespace
+
+double RegionAccounting::SoftTissue::wallAt(const openvdb::Coord& c, const glm::dvec3& world) {
+  // Most of a lesson's cutting is far from the pulp: one box test.
+  if (glm::length(glm::max(glm::dvec3(0.0), glm::max(surfaceLo - world, world - surfaceHi))) > kWallReach + edge)
+    return -1.0;
+  const auto [known, added] = walls.try_emplace(voxelKey(c), -1.f);
+  if (!added) return known->second;
+  double nearest = INFINITY;
+  for (int di = -1; di <= 1; ++di)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int dk = -1; dk <= 1; ++dk) {
+        const auto it = surface.find(wallCell(world, di, dj, dk));
+        if (it == surface.end()) continue;
+        for (const glm::dvec3& p : it->second) nearest = std::min(nearest, glm::length(p - world));
+      }
+  const double wall = std::max(0.0, nearest - 0.5 * edge);
+  known->second = wall <= kWallReach ? float(wall) : -1.f;
+  return known->second;
+}
 
 RegionAccounting::RegionAccounting(const Scene& scene, bool counting) {
   // A scene without regions costs nothing: no snapshot of its volumes.
@@ -166,6 +202,28 @@ RegionAccounting::RegionAccounting(const Scene& scene, bool counting) {
   }
   if (regions_.empty()) return;
   if (counting) findSoftTissues();
+
+  // Removal outside the targets and per tissue: slots after the regions'.
+  summary_.overPreparationPenalty = 0.0;
+  for (const auto& r : regions_)
+    if (const auto* target = dynamic_cast<const MillingTarget*>(r->node)) {
+      summary_.hasTargets = true;
+      summary_.overPreparationPenalty = std::max(summary_.overPreparationPenalty, double(target->overPreparationPenalty.get()));
+    }
+  if (!summary_.hasTargets) summary_.overPreparationPenalty = 1.0;
+  outsideSlot_ = regions_.size();
+  for (auto& v : volumes_) {
+    const std::size_t entries = v->tissues ? v->tissues->entries().size() : 1;
+    for (std::size_t e = 0; e < entries; ++e) {
+      const std::string name = e == 0 || !v->tissues ? std::string("no tissue") : v->tissues->entries()[e].name;
+      auto it = std::find_if(summary_.byTissue.begin(), summary_.byTissue.end(),
+                             [&](const auto& t) { return t.first == name; });
+      if (it == summary_.byTissue.end()) it = summary_.byTissue.insert(it, {name, 0.0});
+      v->tissueSlot.push_back(outsideSlot_ + 1 + std::size_t(it - summary_.byTissue.begin()));
+    }
+  }
+  tissueSlots_ = summary_.byTissue.size();
+
   for (std::size_t vi = 0; vi < volumes_.size(); ++vi) {
     const Volume& v = *volumes_[vi];
     for (auto it = v.origin->grid().cbeginValueOn(); it; ++it) {
@@ -174,14 +232,18 @@ RegionAccounting::RegionAccounting(const Scene& scene, bool counting) {
       const openvdb::Coord c = it.getCoord();
       const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
       const int label = v.label(c.x(), c.y(), c.z());
-      bool forbidden = false;
-      for (std::size_t r = 0; r < regions_.size(); ++r)
-        forbidden |= results_[r].forbidden && regions_[r]->contains(vi, w, label);
+      bool forbidden = false, target = false;
+      for (std::size_t r = 0; r < regions_.size(); ++r) {
+        const bool in = regions_[r]->contains(vi, w, label);
+        forbidden |= in && results_[r].forbidden;
+        target |= in && !results_[r].forbidden;
+      }
       for (std::size_t r = 0; r < regions_.size(); ++r)
         if (regions_[r]->contains(vi, w, label)) {
           results_[r].initial += phi0 * v.voxelVolume;
           if (forbidden && !results_[r].forbidden) results_[r].initialForbidden += phi0 * v.voxelVolume;
         }
+      if (target) summary_.targetsInitial += phi0 * v.voxelVolume;
     }
   }
 }
@@ -223,9 +285,25 @@ void RegionAccounting::findSoftTissues() {
         }
       }
       if (s->box.empty()) continue;
-      s->distance = openvdb::tools::fogToSdf(*s->fog, 0.5f);
       const glm::dvec3 h = v.live->voxelSize();
       s->edge = std::cbrt(std::abs(glm::determinant(glm::dmat3(v.localToWorld)))) * std::min({h.x, h.y, h.z});
+      s->distance = openvdb::tools::fogToSdf(*s->fog, 0.5f);
+      // Its surface voxels in the world, hashed in cells of kWallReach: where
+      // the burr cuts, the nearest is the wall left (count()). A distance
+      // field reaching that far out cost a second at the start of every run
+      // (OpenVDB's fast sweeping over the widened band, full-size phantom).
+      for (auto it = s->fog->cbeginValueOn(); it; ++it) {
+        if (*it != 1.f) continue;
+        const openvdb::Coord c = it.getCoord();
+        bool surface = false;
+        for (const openvdb::Coord& d : {openvdb::Coord(1, 0, 0), openvdb::Coord(-1, 0, 0), openvdb::Coord(0, 1, 0),
+                                        openvdb::Coord(0, -1, 0), openvdb::Coord(0, 0, 1), openvdb::Coord(0, 0, -1)})
+          surface |= fogAccess.getValue(c + d) != 1.f;
+        if (!surface) continue;
+        const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
+        s->surface[wallCell(w)].push_back(w);
+        s->surfaceLo = glm::min(s->surfaceLo, w), s->surfaceHi = glm::max(s->surfaceHi, w);
+      }
       soft_.push_back(std::move(s));
     }
   }
@@ -296,7 +374,7 @@ void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t)
   Volume& v = *volumes_[vi];
   const openvdb::Coord origin(block.origin.x, block.origin.y, block.origin.z);
   const auto* startLeaf = v.origin->grid().tree().probeConstLeaf(origin);
-  std::vector<double> now(regions_.size(), 0.0);
+  std::vector<double> now(outsideSlot_ + 1 + tissueSlots_, 0.0);
   if (startLeaf) {  // a block that started as air has nothing to lose
     for (int z = 0; z < 8; ++z)
       for (int y = 0; y < 8; ++y)
@@ -306,20 +384,47 @@ void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t)
           if (lost <= 0.0) continue;
           const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
           const int label = v.label(c.x(), c.y(), c.z());
+          bool inTarget = false;
           for (std::size_t r = 0; r < regions_.size(); ++r)
-            if (regions_[r]->contains(vi, w, label)) now[r] += lost * v.voxelVolume;
+            if (regions_[r]->contains(vi, w, label)) {
+              now[r] += lost * v.voxelVolume;
+              inTarget |= !results_[r].forbidden;
+            }
+          if (!inTarget) now[outsideSlot_] += lost * v.voxelVolume;
+          // A voxel cut through (to the surface, φ ≤ ½) near a forbidden soft tissue: the wall left over it.
+          if (v.phi(block.values[std::size_t((z * 8 + y) * 8 + x)]) <= 0.5)
+            for (const auto& sp : soft_)
+              if (sp->volume == vi && results_[sp->region].thinnestWall != 0.0)  // 0: entered, nothing thinner
+                if (const double left = sp->wallAt(c, w); left >= 0.0) {
+                  double& wall = results_[sp->region].thinnestWall;
+                  if (wall < 0.0 || left < wall) wall = left;
+                }
+          const std::size_t entry = std::min(std::size_t(std::max(label, 0)), v.tissueSlot.size() - 1);
+          now[v.tissueSlot[entry]] += lost * v.voxelVolume;
         }
   }
   const std::uint64_t key = (std::uint64_t(std::uint32_t(block.origin.x) >> 3)) |
                             (std::uint64_t(std::uint32_t(block.origin.y) >> 3) << 21) |
                             (std::uint64_t(std::uint32_t(block.origin.z) >> 3) << 42);
   std::vector<double>& before = v.contribution[key];
-  before.resize(regions_.size(), 0.0);
+  before.resize(now.size(), 0.0);
   for (std::size_t r = 0; r < regions_.size(); ++r) {
     results_[r].removed += now[r] - before[r];
     if (results_[r].forbidden && results_[r].removed > kViolationVoxels * v.voxelVolume) stampViolation(r, t);
   }
+  summary_.outsideTargets += now[outsideSlot_] - before[outsideSlot_];
+  for (std::size_t i = 0; i < tissueSlots_; ++i) summary_.byTissue[i].second += now[outsideSlot_ + 1 + i] - before[outsideSlot_ + 1 + i];
   before = std::move(now);
+  stampCompletion(t);
+}
+
+void RegionAccounting::stampCompletion(double t) {
+  if (!summary_.hasTargets || summary_.completed >= 0.0) return;
+  for (std::size_t r = 0; r < regions_.size(); ++r)
+    if (const auto* target = dynamic_cast<const MillingTarget*>(regions_[r]->node);
+        target && !(results_[r].fraction() >= double(target->completeAt.get())))
+      return;
+  summary_.completed = t;
 }
 
 void RegionAccounting::publishFields() {

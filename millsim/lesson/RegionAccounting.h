@@ -7,6 +7,9 @@
 // φ the material fraction of docs/algorithms.md "Milling"; a block seen again
 // replaces its earlier contribution, so totals never drift.
 //
+// The same blocks give what was removed outside every target and per tissue
+// (RemovalSummary), and the time every target was done.
+//
 // A soft tissue (TissueMap::soft: the pulp, below the isoValue) has nothing
 // to remove: a ForbiddenRegion naming one is entered when the burr's head
 // reaches one of its voxels below the surface (burrAt, for every frame's
@@ -38,11 +41,33 @@ struct RegionResult {
   double firstEntry = -1.0;
   double depth = 0.0;
   double swept = 0.0;
+  // And the thinnest wall left over them: the least distance from a voxel
+  // the burr cut through to their surface (m, to a voxel); 0 once entered;
+  // -1 while nothing was cut within kWallReach of them.
+  double thinnestWall = -1.0;
   double fraction() const { return initial > 0.0 ? removed / initial : 0.0; }
+};
+
+// What the burr removed beyond each region's own count: outside every
+// MillingTarget (the over-preparation a teacher marks down) and per tissue;
+// and when every target was done.
+struct RemovalSummary {
+  bool hasTargets = false;               // the scene has a MillingTarget
+  double outsideTargets = 0.0;           // m³ removed where no target is
+  double targetsInitial = 0.0;           // m³ of material the targets held at the start (their union)
+  double overPreparationPenalty = 1.0;   // the largest of the targets' MillingTarget.overPreparationPenalty
+  double completed = -1.0;               // s: when every target first reached its completeAt; -1: never
+  std::vector<std::pair<std::string, double>> byTissue;  // m³ removed per tissue name ("no tissue": material of none)
+  // Removal outside the targets over the material the targets held (0 without targets).
+  double overPreparation() const { return targetsInitial > 0.0 ? outsideTargets / targetsInitial : 0.0; }
 };
 
 class RegionAccounting {
 public:
+  // How far from a soft tissue the remaining wall is measured (m): thinner
+  // walls are what a teacher looks at, and the distance field costs memory
+  // and time with its width.
+  static constexpr double kWallReach = 3e-3;
   // Collects the scene's regions and loaded volumes (in placedVolumes order,
   // the haptic scene's) and measures each region's material. Call before
   // milling starts; throws std::runtime_error for a region naming an unknown tissue.
@@ -67,6 +92,7 @@ public:
   // Writes removedVolume, fraction, violated, firstViolationTime, depth and sweptVolume.
   void publishFields();
   const std::vector<RegionResult>& results() const { return results_; }
+  const RemovalSummary& summary() const { return summary_; }
   // Each region's material before any milling (`initial`), without the
   // snapshot a run counts against: what `check` reports.
   static std::vector<RegionResult> atStart(const Scene& scene);
@@ -79,11 +105,15 @@ private:
   RegionAccounting(const Scene& scene, bool counting);
   void count(std::size_t volume, const BlockUpdate& block, double t);
   void stampViolation(std::size_t region, double t);
+  void stampCompletion(double t);
   void findSoftTissues();
 
   std::vector<std::unique_ptr<Region>> regions_;
   std::vector<std::unique_ptr<Volume>> volumes_;
   std::vector<RegionResult> results_;
+  RemovalSummary summary_;
+  // Slots of a block's contribution after the regions': outside the targets, then one per tissue name.
+  std::size_t outsideSlot_ = 0, tissueSlots_ = 0;
   std::vector<std::unique_ptr<SoftTissue>> soft_;  // one per (forbidden region, volume) with soft voxels
   Pose lastPose_;
   BurrHead lastHead_;

@@ -32,14 +32,14 @@ public:
                            Range::openClosed(0, 1e7).in(quantity::linearStiffness)};
   SFFloat couplingStiffness{this, "couplingStiffness", Access::InitializeOnly, 2000.f,
                             "Virtual coupling spring between tool and device (N/m): the stiffness the user feels.",
-                            Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000, "N/m")};
+                            Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000)};
   SFFloat couplingDamping{this, "couplingDamping", Access::InitializeOnly, 1.f,
                           "Virtual coupling damper on the tool's velocity relative to the device's (N·s/m).",
-                          Range::closed(0, 1e4).in(quantity::linearStiffness)};
+                          Range::closed(0, 1e4).in(quantity::linearDamping)};
   SFFloat angularCouplingStiffness{this, "angularCouplingStiffness", Access::InitializeOnly, 0.1f,
                                    "Virtual coupling torsion spring (N·m/rad).", Range::openClosed(0, 1000).in(quantity::angularStiffness)};
   SFFloat angularCouplingDamping{this, "angularCouplingDamping", Access::InitializeOnly, 5e-4f,
-                                 "Virtual coupling torsion damper (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularStiffness)};
+                                 "Virtual coupling torsion damper (N·m·s/rad).", Range::closed(0, 100).in(quantity::angularDamping)};
   SFFloat sdfVoxelSize{this, "sdfVoxelSize", Access::InitializeOnly, 0.05e-3f,
                        "Cell size of the tool's precomputed distance grid (m).", Range::closed(1e-5, 1e-3).in(quantity::length)};
   SFBool sampledSdf{this, "sampledSdf", Access::InitializeOnly, false,
@@ -67,7 +67,7 @@ public:
   SFFloat feedResistance{this, "feedResistance", Access::InitializeOnly, 200.f,
                          "Milling: the burr advances from the tool towards the device at force / feedResistance "
                          "(N·s/m).",
-                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
+                         Range::openClosed(0, 1e6).in(quantity::linearDamping)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

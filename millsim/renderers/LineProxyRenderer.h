@@ -26,7 +26,7 @@ public:
                         "NUMBER_OF_ROTATION_STEPS of the first-contact search (eq. 4).", Range::closed(1, 100)};
   SFFloat springConstant{this, "springConstant", Access::InputOutput, 2000.f,
                          "k_spring of eq. 6 and eq. 10 (N/m).",
-                         Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000, "N/m")};
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000)};
   SFInt32 proxyIterations{this, "proxyIterations", Access::InputOutput, 6,
                           "Tangent-plane steps per frame of the probe-proxy algorithm.", Range::closed(1, 100)};
 
@@ -49,7 +49,7 @@ public:
 
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr advances into material at force / feedResistance (N·s/m).",
-                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
+                         Range::openClosed(0, 1e6).in(quantity::linearDamping)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
   std::string cannotCarry(const ToolGeometry& tool) const override;

@@ -30,7 +30,7 @@ public:
   SFFloat springConstant{this, "springConstant", Access::InputOutput, 2400.f,
                          "The spring (N/m): the felt stiffness with deepestPoints; k_spring of eq. 14 without "
                          "(then felt about k times the colliding fraction: 20000 N/m feels like 2400).",
-                         Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000, "N/m")};
+                         Range::openClosed(0, 1e6).in(quantity::linearStiffness).usually(100, 20000)};
 
   SFBool deepestPoints{this, "deepestPoints", Access::InitializeOnly, true,
                        "Push the tool out by k times its depth: each contact (the burr's or shaft's deepest line "
@@ -41,7 +41,7 @@ public:
   SFFloat feedResistance{this, "feedResistance", Access::InputOutput, 200.f,
                          "Milling: the burr cuts where the device is, and the material gives way at force / "
                          "(feedResistance x hardness) (N·s/m); MillSim's removal model, the paper removes at once.",
-                         Range::openClosed(0, 1e6).in(quantity::linearStiffness)};
+                         Range::openClosed(0, 1e6).in(quantity::linearDamping)};
 
   std::unique_ptr<HapticAlgorithm> compile(const ToolGeometry& tool, HapticScene& scene) const override;
 };

@@ -25,7 +25,8 @@ double lessonScore(const LessonReport& r) {
     }
   }
   if (targets == 0) return -1.0;
-  return 100.0 * sum / targets * std::pow(0.5, violations);
+  const double overPrepared = std::max(0.0, 1.0 - r.removal.overPreparationPenalty * r.removal.overPreparation());
+  return 100.0 * sum / targets * std::pow(0.5, violations) * overPrepared;
 }
 
 std::string reportJson(const LessonReport& r) {
@@ -45,12 +46,21 @@ std::string reportJson(const LessonReport& r) {
       f["first_entry_s"] = g.firstEntry >= 0.0 ? Json(g.firstEntry) : Json(nullptr);
       f["depth_mm"] = g.depth * 1e3;
       f["swept_mm3"] = g.swept * 1e9;
+      f["thinnest_wall_mm"] = g.thinnestWall >= 0.0 ? Json(g.thinnestWall * 1e3) : Json(nullptr);
       j["forbidden"].push_back(f);
     } else {
       j["targets"].push_back(
           Json{{"name", g.name}, {"removed_mm3", g.removed * 1e9}, {"fraction", g.fraction()}, {"initial_mm3", g.initial * 1e9}});
     }
   }
+  if (r.removal.hasTargets) {
+    j["outside_targets_mm3"] = r.removal.outsideTargets * 1e9;
+    j["over_preparation"] = r.removal.overPreparation();
+    j["over_preparation_penalty"] = r.removal.overPreparationPenalty;
+    j["completed_s"] = r.removal.completed >= 0.0 ? Json(r.removal.completed) : Json(nullptr);
+  }
+  j["tissues"] = Json::array();
+  for (const auto& [name, removed] : r.removal.byTissue) j["tissues"].push_back(Json{{"name", name}, {"removed_mm3", removed * 1e9}});
   const double score = lessonScore(r);
   j["score"] = score >= 0.0 ? Json(score) : Json(nullptr);
   return j.dump(2) + "\n";
@@ -116,14 +126,40 @@ LessonReport readReport(const std::string& path) {
       g.firstEntry = number(f, "first_entry_s", "a forbidden region");
     if (f.contains("depth_mm")) g.depth = number(f, "depth_mm", "a forbidden region") * 1e-3;
     if (f.contains("swept_mm3")) g.swept = number(f, "swept_mm3", "a forbidden region") * 1e-9;
+    if (f.contains("thinnest_wall_mm") && !f["thinnest_wall_mm"].is_null())
+      g.thinnestWall = number(f, "thinnest_wall_mm", "a forbidden region") * 1e-3;
     r.regions.push_back(g);
   }
+  // Reports written before over-preparation and tissues were counted have none of these.
+  for (const RegionResult& g : r.regions) r.removal.hasTargets |= !g.forbidden;
+  if (j.contains("outside_targets_mm3")) r.removal.outsideTargets = number(j, "outside_targets_mm3", "the report") * 1e-9;
+  if (j.contains("over_preparation_penalty"))
+    r.removal.overPreparationPenalty = number(j, "over_preparation_penalty", "the report");
+  if (j.contains("over_preparation")) {
+    const double share = number(j, "over_preparation", "the report");
+    r.removal.targetsInitial = share > 0.0 ? r.removal.outsideTargets / share : 0.0;
+  }
+  if (r.removal.targetsInitial == 0.0)
+    for (const RegionResult& g : r.regions) r.removal.targetsInitial += g.forbidden ? 0.0 : g.initial;
+  if (j.contains("completed_s") && !j["completed_s"].is_null()) r.removal.completed = number(j, "completed_s", "the report");
+  if (j.contains("tissues"))
+    for (const Json& t : j["tissues"]) r.removal.byTissue.emplace_back(text(t, "name", "a tissue"), number(t, "removed_mm3", "a tissue") * 1e-9);
   return r;
 }
 
 namespace {
-// ", entered at 6.612 s, 0.42 mm deep, 0.213 mm³ swept" for a forbidden soft tissue the burr entered.
+std::string completedText(const RemovalSummary& s) {
+  if (s.completed < 0.0) return "not reached";
+  return (std::ostringstream() << std::fixed << std::setprecision(2) << "at " << s.completed << " s").str();
+}
+
+// ", entered at 6.612 s, 0.42 mm deep, 0.213 mm³ swept" for a forbidden soft tissue the burr entered;
+// ", thinnest wall left 0.84 mm" for one it did not.
 std::string entered(const RegionResult& g) {
+  if (g.firstEntry < 0.0 && g.thinnestWall > 0.0)
+    return (std::ostringstream() << std::fixed << std::setprecision(2) << ", thinnest wall left " << g.thinnestWall * 1e3
+                                 << " mm")
+        .str();
   if (g.firstEntry < 0.0) return {};
   std::ostringstream o;
   o << std::fixed << ", entered at " << std::setprecision(3) << g.firstEntry << " s, " << std::setprecision(2)
@@ -145,8 +181,19 @@ std::string describeReport(const LessonReport& r, bool markdown) {
       << "| duration | " << std::setprecision(2) << r.duration << " s |\n"
       << "| removed | " << std::setprecision(3) << r.removed * 1e9 << " mm³ |\n"
       << "| peak force | " << std::setprecision(2) << r.peakForce << " N |\n"
-      << "| peak torque | " << std::setprecision(4) << r.peakTorque << " N·m |\n"
-      << "| **score** | **" << scoreText << "** |\n\n";
+      << "| peak torque | " << std::setprecision(4) << r.peakTorque << " N·m |\n";
+    if (r.removal.hasTargets)
+      o << "| outside the targets | " << std::setprecision(3) << r.removal.outsideTargets * 1e9 << " mm³ ("
+        << std::setprecision(1) << 100.0 * r.removal.overPreparation() << " % of the targets' material; penalty "
+        << std::setprecision(2) << r.removal.overPreparationPenalty << ") |\n"
+        << "| targets done | " << completedText(r.removal) << " |\n";
+    o << "| **score** | **" << scoreText << "** |\n\n";
+    if (!r.removal.byTissue.empty()) {
+      o << "| tissue | removed (mm³) |\n|---|---|\n";
+      for (const auto& [name, removed] : r.removal.byTissue)
+        o << "| " << name << " | " << std::setprecision(3) << removed * 1e9 << " |\n";
+      o << "\n";
+    }
     o << "| region | kind | removed (mm³) | result |\n|---|---|---|---|\n";
     for (const RegionResult& g : r.regions) {
       o << "| " << g.name << " | " << (g.forbidden ? "forbidden" : "target") << " | " << std::setprecision(3)
@@ -177,7 +224,51 @@ std::string describeReport(const LessonReport& r, bool markdown) {
       o << " (" << std::setprecision(1) << 100.0 * g.fraction() << " % of it)";
     o << "\n";
   }
+  if (r.removal.hasTargets)
+    o << "  outside the targets: " << std::setprecision(3) << r.removal.outsideTargets * 1e9 << " mm³ ("
+      << std::setprecision(1) << 100.0 * r.removal.overPreparation() << " % of the targets' material, penalty "
+      << std::setprecision(2) << r.removal.overPreparationPenalty << "); targets done " << completedText(r.removal)
+      << "\n";
+  if (!r.removal.byTissue.empty()) {
+    o << "  removed per tissue:";
+    for (const auto& [name, removed] : r.removal.byTissue)
+      o << " " << name << " " << std::setprecision(3) << removed * 1e9 << " mm³";
+    o << "\n";
+  }
   o << "  score " << scoreText << "\n";
+  return o.str();
+}
+
+std::string reportsCsv(const std::vector<std::pair<std::string, LessonReport>>& reports) {
+  std::ostringstream o;
+  o << "file,scene,renderer,duration_s,removed_mm3,targets_fraction,outside_targets_mm3,over_preparation,"
+       "completed_s,violations,first_violation_s,peak_force_N,score\n";
+  auto cell = [](const std::string& s) {  // RFC 4180: quote a cell holding a comma, quote or newline
+    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  auto number = [](double v) { return (std::ostringstream() << std::setprecision(6) << v).str(); };
+  for (const auto& [file, r] : reports) {
+    double fractions = 0.0, firstViolation = -1.0;
+    int targets = 0, violations = 0;
+    for (const RegionResult& g : r.regions) {
+      if (!g.forbidden) fractions += std::min(1.0, g.fraction()), ++targets;
+      if (g.forbidden && g.firstViolation >= 0.0) {
+        ++violations;
+        if (firstViolation < 0.0 || g.firstViolation < firstViolation) firstViolation = g.firstViolation;
+      }
+    }
+    const double score = lessonScore(r);
+    o << cell(file) << ',' << cell(r.scene) << ',' << cell(r.renderer) << ',' << number(r.duration) << ','
+      << number(r.removed * 1e9) << ',' << (targets ? number(fractions / targets) : "") << ','
+      << (r.removal.hasTargets ? number(r.removal.outsideTargets * 1e9) : "") << ','
+      << (r.removal.hasTargets ? number(r.removal.overPreparation()) : "") << ','
+      << (r.removal.completed >= 0.0 ? number(r.removal.completed) : "") << ',' << violations << ','
+      << (firstViolation >= 0.0 ? number(firstViolation) : "") << ',' << number(r.peakForce) << ','
+      << (score >= 0.0 ? number(score) : "") << "\n";
+  }
   return o.str();
 }
 

@@ -49,7 +49,7 @@ public:
 }  // namespace
 
 LessonReport SessionResult::report(const std::string& sceneFile) const {
-  return LessonReport{sceneFile, renderer, duration, stats.removedVolume, stats.peakForce, stats.peakTorque, regions};
+  return LessonReport{sceneFile, renderer, duration, stats.removedVolume, stats.peakForce, stats.peakTorque, regions, removal};
 }
 
 std::unique_ptr<Session> Session::openDevice(Scene& scene, const SessionOptions& options) {
@@ -460,6 +460,7 @@ SessionResult Session::finish() {
   result.duration = simulated_ ? double(result.stats.frames) / rate() : result.stats.elapsed;
   result.last = last_;
   result.regions = regions_->results();
+  result.removal = regions_->summary();
   result.failure = loop_->failure();
   publishToDevice(*run_->device, last_, rate());
   publishRemovedVolumes(*run_);

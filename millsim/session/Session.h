@@ -99,6 +99,7 @@ struct SessionResult {
   double duration = 0.0;  // s: the run's length (simulated: frames / rate)
   FrameRecord last;       // the last haptic frame (the log then has the stop row)
   std::vector<RegionResult> regions;
+  RemovalSummary removal;  // outside the targets, per tissue, time to completion
   std::optional<RunGraphicsStats> graphics;
   std::string soundSummary;  // one line, or empty without sound
   // Why the device or the loop ended the run early (the device failed, a

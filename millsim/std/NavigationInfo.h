@@ -10,7 +10,7 @@ public:
   const NodeType& nodeType() const override { return type(); }
 
   MFString navType{this, "type", Access::InputOutput, {"EXAMINE", "ANY"}, "Navigation modes, preferred first."};
-  SFFloat speed{this, "speed", Access::InputOutput, 1.f, "Navigation speed (m/s).", Range::closed(0, 1e4).in(quantity::length)};
+  SFFloat speed{this, "speed", Access::InputOutput, 1.f, "Navigation speed (m/s).", Range::closed(0, 1e4).in(quantity::velocity)};
   SFBool headlight{this, "headlight", Access::InputOutput, true, "Whether a light shines from the viewer."};
   MFFloat avatarSize{this, "avatarSize", Access::InputOutput, {0.25f, 1.6f, 0.75f},
                      "Collision distance, eye height, step height (m).", Range::closed(0, 1e4).in(quantity::length)};

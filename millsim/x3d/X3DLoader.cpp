@@ -547,7 +547,8 @@ private:
   void warnOfUnitSlip(const Field& f, const Node& node, const SourceLocation& at, const std::string& text,
                       const UnitScale& units) {
     const Range* r = f.range();
-    if (!r || !r->usualUnit || (f.type() != FieldType::SFFloat && f.type() != FieldType::SFDouble)) return;
+    if (!r || !r->hasUsual() || (f.type() != FieldType::SFFloat && f.type() != FieldType::SFDouble)) return;
+    const std::string unit = siUnit(r->quantity);
     double v = 0.0;
     try {
       v = std::stod(f.toString());
@@ -558,12 +559,12 @@ private:
     if (!low && !high) return;
     const double factor = units.factor(r->quantity);
     std::string read = "'" + text + "'";
-    if (factor != 1.0) read += " (in this file's <unit> statements: " + formatNumber(v) + " " + r->usualUnit + ")";
-    else read += " " + std::string(r->usualUnit);
+    if (factor != 1.0) read += " (in this file's <unit> statements: " + formatNumber(v) + " " + unit + ")";
+    else read += " " + unit;
     sink_.warning(at, std::string(f.name()) + " of " + node.typeName() + " is " + read + ", " +
                           formatNumber(std::round((low ? r->usualLo / v : v / r->usualHi) * 10.0) / 10.0) +
                           " times " + (low ? "below" : "above") + " the usual " + formatNumber(r->usualLo) + " to " +
-                          formatNumber(r->usualHi) + " " + r->usualUnit + ": is it in the unit the file means? " +
+                          formatNumber(r->usualHi) + " " + unit + ": is it in the unit the file means? " +
                           (units.si() ? "This file is in SI units (m, N, N·m)"
                                       : "This file's <unit> statements scale its lengths by " +
                                             formatNumber(units.length) + " m and its forces by " +

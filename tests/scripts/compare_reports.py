@@ -25,6 +25,17 @@ def compare(a, b):
             problems.append(f"{key}: {a[key]} != {b[key]}")
     if (a["score"] is None) != (b["score"] is None) or (a["score"] is not None and not close(a["score"], b["score"])):
         problems.append(f"score: {a['score']} != {b['score']}")
+    # Over-preparation and removal per tissue (reports since issue 47 part 6): the same blocks, the same sums.
+    for key in ("outside_targets_mm3", "over_preparation"):
+        if (key in a) != (key in b) or (key in a and not close(a[key], b[key])):
+            problems.append(f"{key}: {a.get(key)} != {b.get(key)}")
+    ca, cb = a.get("completed_s"), b.get("completed_s")
+    if (ca is None) != (cb is None) or (ca is not None and abs(ca - cb) > 0.025):
+        problems.append(f"completed_s: {ca} != {cb}")
+    ta = [(t["name"], t["removed_mm3"]) for t in a.get("tissues", [])]
+    tb = [(t["name"], t["removed_mm3"]) for t in b.get("tissues", [])]
+    if [n for n, _ in ta] != [n for n, _ in tb] or any(not close(x, y) for (_, x), (_, y) in zip(ta, tb)):
+        problems.append(f"tissues: {ta} != {tb}")
     for kind in ("targets", "forbidden"):
         if [r["name"] for r in a[kind]] != [r["name"] for r in b[kind]]:
             problems.append(f"{kind}: names differ")
@@ -37,6 +48,9 @@ def compare(a, b):
                 fa, fb = ra["first_violation_s"], rb["first_violation_s"]
                 if (fa is None) != (fb is None) or (fa is not None and abs(fa - fb) > 0.025):
                     problems.append(f"forbidden '{ra['name']}' first_violation_s: {fa} != {fb}")
+                wa, wb = ra.get("thinnest_wall_mm"), rb.get("thinnest_wall_mm")
+                if (wa is None) != (wb is None) or (wa is not None and not close(wa, wb)):
+                    problems.append(f"forbidden '{ra['name']}' thinnest_wall_mm: {wa} != {wb}")
     return problems
 
 

@@ -16,6 +16,7 @@
 #include "millsim/lesson/ForbiddenRegion.h"
 #include "millsim/lesson/MillingTarget.h"
 #include "millsim/lesson/RegionAccounting.h"
+#include "millsim/session/LessonReport.h"
 #include "millsim/session/Replay.h"
 #include "millsim/volume/VolumeObject.h"
 #include "millsim/x3d/X3DLoader.h"
@@ -169,6 +170,9 @@ const char* kRegionScene = R"(<X3D><Scene>
 struct RegionRun {
   std::unique_ptr<Scene> scene;
   std::vector<RegionResult> results;
+  RemovalSummary summary;
+  double removed = 0.0;  // m³: the whole run's, by the haptic loop's own count
+  double end = 0.0;      // s: the last frame's time
 };
 
 // Straight down the tooth's axis from 12 mm to `bottom` (burr centre, m) in
@@ -188,10 +192,14 @@ RegionRun millDown(double bottom, double seconds, double until) {
   options.onLoop = [&](HapticLoop& loop) {
     for (std::size_t i = 0; i < regions.volumeCount(); ++i) loop.publishBlocks(i, regions.channel(i));
   };
-  options.onFrame = [&](const FrameRecord& f) { regions.update(f.t); };
-  replay(*run.scene, t, nullptr, options);
+  options.onFrame = [&](const FrameRecord& f) {
+    regions.update(f.t);
+    run.end = f.t;
+  };
+  run.removed = replay(*run.scene, t, nullptr, options).stats.removedVolume;
   regions.publishFields();
   run.results = regions.results();
+  run.summary = regions.summary();
   return run;
 }
 
@@ -246,6 +254,82 @@ TEST(Regions, GoingOnIntoThePulpReportsWhenItWasFirstCut) {
   // before it, something was 3 ms after (recounted, not by the accounting).
   EXPECT_EQ(pulpRemovedRecount(*millDown(0.0035, 3.0, pulp.firstViolation - 0.003).scene), 0.0);
   EXPECT_GT(pulpRemovedRecount(*millDown(0.0035, 3.0, pulp.firstViolation + 0.003).scene), 0.0);
+}
+
+// Issue 47, part 6: what a teacher grades beyond the regions. Milling 1.5 mm
+// into the pulp removes material outside the cavity (dentin and pulp below
+// it); the removal outside the target and the target's own add up to the
+// whole, per tissue too, and to the haptic loop's own count of the run; the
+// score counts the over-preparation by the target's penalty.
+TEST(Regions, RemovalOutsideTheTargetAndPerTissueAddUpToTheWhole) {
+  const RegionRun deep = millDown(0.0035, 3.0, 1e9);
+  const RegionResult& cavity = deep.results[0];
+  const RemovalSummary& s = deep.summary;
+  ASSERT_TRUE(s.hasTargets);
+  EXPECT_GT(s.outsideTargets, 0.5e-9) << "the burr went 3.6 mm below the cavity's floor";
+  double tissues = 0.0, pulp = 0.0, dentin = 0.0;
+  for (const auto& [name, removed] : s.byTissue) {
+    tissues += removed;
+    if (name == "pulp") pulp = removed;
+    if (name == "dentin") dentin = removed;
+  }
+  EXPECT_NEAR(tissues, cavity.removed + s.outsideTargets, 1e-9 * tissues);
+  EXPECT_NEAR(tissues, deep.removed, 1e-3 * deep.removed) << "the loop's own count of the run";
+  EXPECT_NEAR(pulp, deep.results[1].removed, 1e-9 * pulp + 1e-18);
+  EXPECT_GT(dentin, s.outsideTargets - pulp - 1e-12);  // below the cavity there is only dentin and pulp
+  EXPECT_NEAR(s.targetsInitial, cavity.initial, 1e-12 * cavity.initial);
+  EXPECT_DOUBLE_EQ(s.overPreparationPenalty, 1.0);
+  // The score: the cavity's share, halved for the pulp, times (1 - penalty x outside / target).
+  LessonReport report{"regions.x3d", "SurfacePointRenderer", deep.end, deep.removed, 0.0, 0.0, deep.results, s};
+  const double base = 100.0 * std::min(1.0, cavity.fraction()) * 0.5;
+  EXPECT_NEAR(lessonScore(report), base * std::max(0.0, 1.0 - s.overPreparation()), 1e-9);
+  report.removal.overPreparationPenalty = 0.0;
+  EXPECT_NEAR(lessonScore(report), base, 1e-9);
+  // Done when the cavity reached completeAt (0.9), not before, and never past the run's end.
+  if (cavity.fraction() >= 0.9) {
+    EXPECT_GE(s.completed, 0.0);
+    EXPECT_LE(s.completed, deep.end);
+  } else {
+    EXPECT_LT(s.completed, 0.0);
+  }
+  // A shallow cut inside the cavity removes nothing outside it.
+  const RegionRun shallow = millDown(0.0078, 1.0, 1e9);
+  EXPECT_LT(shallow.summary.outsideTargets, 0.02 * shallow.results[0].removed);
+}
+
+// The wall left over the pulp, against a brute-force recount: the least
+// distance from a voxel cut through (φ ≤ ½ now, more before) to a pulp voxel,
+// centre to centre, less the half voxel by which the pulp's surface lies
+// outside its voxels' centres, agrees with the report to a voxel. A cut into
+// the pulp leaves none; a shallow one more than 1.5 mm, or one farther than
+// the wall is measured (kWallReach, 3 mm).
+TEST(Regions, TheThinnestWallLeftOverThePulpIsReported) {
+  const RegionRun medium = millDown(0.0060, 2.5, 1e9);
+  const double wall = medium.results[1].thinnestWall;
+  EXPECT_LT(medium.results[1].firstViolation, 0.0);
+  ASSERT_GT(wall, 0.0);
+  const VolumeObject& vo = *medium.scene->nodesOfType<VolumeObject>().front();
+  const VoxelVolume fresh = makeToothPhantom(parsePhantomUrl("phantom:tooth?size=128,128,88"));
+  const TissueMap& map = *vo.tissueMap();
+  const int pulp = map.find("pulp");
+  const double air = vo.airValue.get(), iso = vo.isoValue.get(), scale = 1.0 / (2.0 * (iso - air));
+  auto phi = [&](double v) { return std::clamp((v - air) * scale, 0.0, 1.0); };
+  std::vector<glm::dvec3> pulpVoxels, cut;
+  for (auto it = fresh.grid().cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    const glm::dvec3 p(c.x(), c.y(), c.z());
+    if (map.labelAt(c.x(), c.y(), c.z()) == pulp && *it < iso) pulpVoxels.push_back(p);
+    if (phi(*it) > 0.5 && phi(vo.volume()->valueAt(c.x(), c.y(), c.z())) <= 0.5) cut.push_back(p);
+  }
+  ASSERT_FALSE(cut.empty());
+  double nearest = 1e9;
+  for (const glm::dvec3& a : cut)
+    for (const glm::dvec3& b : pulpVoxels) nearest = std::min(nearest, glm::length(a - b));
+  const double h = fresh.voxelSize().x;
+  EXPECT_NEAR(wall, (nearest - 0.5) * h, 0.6 * h) << "brute force: " << nearest << " voxels centre to centre";
+  EXPECT_LT(millDown(0.0035, 3.0, 1e9).results[1].thinnestWall, 0.25e-3);
+  const double far = millDown(0.0078, 1.0, 1e9).results[1].thinnestWall;
+  EXPECT_TRUE(far < 0.0 || far > 1.5e-3) << far;
 }
 
 // The cut front (#2's and #3's): a burr in contact, milling, cuts at a front

@@ -48,7 +48,7 @@ const char* kDegrees = R"(<unit category="angle" name="degree" conversionFactor=
 const char* kGrams = R"(<unit category="mass" name="gram" conversionFactor="0.001"/>)";
 
 bool sameDimension(const Quantity& a, const Quantity& b) {
-  return a.length == b.length && a.angle == b.angle && a.mass == b.mass && a.force == b.force;
+  return a.length == b.length && a.angle == b.angle && a.mass == b.mass && a.force == b.force && a.time == b.time;
 }
 
 }  // namespace
@@ -58,13 +58,13 @@ bool sameDimension(const Quantity& a, const Quantity& b) {
 // be read unconverted from a millimetre scene, silently 1000 times too soft.
 TEST(Units, EveryFieldsQuantityMatchesTheUnitItsDocumentationNames) {
   const std::map<std::string, Quantity> units = {
-      {"m", quantity::length},          {"m/s", quantity::length},
+      {"m", quantity::length},          {"m/s", quantity::velocity},
       {"metres", quantity::length},     {"N", quantity::force},
       {"N·m", quantity::torque},        {"N/m", quantity::linearStiffness},
-      {"N·s/m", quantity::linearStiffness}, {"N·m/rad", quantity::angularStiffness},
-      {"N·m·s/rad", quantity::angularStiffness}, {"kg", quantity::mass},
+      {"N·s/m", quantity::linearDamping}, {"N·m/rad", quantity::angularStiffness},
+      {"N·m·s/rad", quantity::angularDamping}, {"kg", quantity::mass},
       {"kg·m²", quantity::inertia},     {"radians", quantity::angle},
-      {"rad/s", quantity::angle}};  // per second converts as the angle (X3D has no time unit)
+      {"rad/s", quantity::angularVelocity}};  // per second converts as the angle (X3D has no time unit)
   // "(N/m)", "(m, world)", "d is in metres".
   const std::regex named(R"(\((m|m/s|N|N·m|N/m|N·s/m|N·m/rad|N·m·s/rad|kg|kg·m²|radians|rad/s)[,)]|in (metres))");
   NodeRegistry r = builtinRegistry();
@@ -85,6 +85,11 @@ TEST(Units, EveryFieldsQuantityMatchesTheUnitItsDocumentationNames) {
     }
   }
   EXPECT_GT(tagged, 40);  // the check above must have had something to compare
+  // And the unit `check` prints after each value is the one the doc names.
+  for (const auto& [name, q] : units)
+    if (name != "metres" && name != "radians") EXPECT_EQ(siUnit(q), name);
+  EXPECT_EQ(siUnit(quantity::length), "m");
+  EXPECT_EQ(siUnit(Quantity{}), "");
 }
 
 TEST(Units, AScenesValuesAreReadInItsUnitsAndStoredInSI) {
