@@ -49,7 +49,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
                   "Trajectory CSV: a simulated device follows it instead of its url; any other device is replaced "
                   "by it for this run (played open loop, as replay does)");
   cmd->add_option("--device", args->device,
-                  "Drive this run with a simulated device in place of the scene's (its renderer, tool, limits and "
+                  "Drive this run with a simulated device in place of the scene's (whose renderer, tool, limits and "
                   "calibration stay): trajectory (open loop), hand (a simulated hand pulled along the trajectory) "
                   "or mouse (the window's mouse)")
       ->check(CLI::IsMember({"trajectory", "hand", "mouse"}));

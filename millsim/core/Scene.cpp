@@ -76,7 +76,9 @@ void describeNode(const Node& n, int depth, std::string_view viaField, std::set<
     out += " " + std::string(f->name()) + "='" + v + "'";
     // The SI unit the value is in, after any <unit> conversion (a quantity
     // carried by only part of the value, as a plane's d, is left unnamed).
-    if (const Range* r = f->range(); r && !r->quantity.lastOnly && !r->quantity.translationOnly)
+    if (const Range* r = f->range();
+        r && !r->quantity.lastOnly && !r->quantity.translationOnly &&
+        !(r->quantity.minusOneIsNone && v.find_first_not_of("-1 ") == std::string::npos))  // -1: "none", no unit
       if (const std::string unit = siUnit(r->quantity); !unit.empty()) out += " " + unit;
   }
   out += "\n";

@@ -1,7 +1,8 @@
 #pragma once
 // A device trajectory: the replay CSV format
 //   t,x,y,z,qw,qx,qy,qz,button
-// t in seconds (strictly increasing), the burr centre in metres (world frame;
+// t in seconds (strictly increasing), the burr centre in metres (the device's
+// frame: the device node's calibration places it in the world, the identity by default;
 // a header of x_mm,y_mm,z_mm — or _cm, _um, _m — says the file's unit instead),
 // a unit quaternion (w first), button 0/1 (milling on). Poses between rows are
 // interpolated (linear position, slerp orientation); the button holds the

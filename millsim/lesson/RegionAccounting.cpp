@@ -9,7 +9,9 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <openvdb/tools/FastSweeping.h>
+#include <glm/common.hpp>
 #include <glm/matrix.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "millsim/core/Scene.h"
 #include "millsim/lesson/ForbiddenRegion.h"
@@ -75,6 +77,11 @@ struct RegionAccounting::Volume {
   BlockChannel channel{kChannelBlocks};
   std::unordered_map<std::uint64_t, std::vector<double>> contribution;  // per block, per slot (m³)
   std::vector<std::size_t> tissueSlot;  // per TissueMap entry: its slot (RegionAccounting::tissueSlots_)
+  std::unordered_map<std::uint64_t, float> depths;  // per voxel cut through: depthBelowSurface, kept
+  // How far below the original surface voxel c lies, straight up (world +Y),
+  // in half-voxel steps: the first point above it whose starting material is
+  // under half, or the volume's edge.
+  double depthBelowSurface(const openvdb::Coord& c, std::uint64_t key);
   double phi(double v) const { return std::clamp((v - air) * phiScale, 0.0, 1.0); }
   glm::dvec3 world(int i, int j, int k) const {
     return glm::dvec3(localToWorld * glm::dvec4(origin->indexToLocal(glm::dvec3(i, j, k)), 1.0));
@@ -115,6 +122,27 @@ std::uint64_t voxelKey(const openvdb::Coord& c) {
          (std::uint64_t(std::uint32_t(c.z()) & 0x1fffff) << 42);
 }
 }  // namespace
+
+double RegionAccounting::Volume::depthBelowSurface(const openvdb::Coord& c, std::uint64_t key) {
+  const auto [known, added] = depths.try_emplace(key, 0.f);
+  if (!added) return known->second;
+  const glm::dvec3 h = origin->voxelSize();
+  const glm::dvec3 up = glm::dvec3(worldToLocal * glm::dvec4(0.0, 1.0, 0.0, 0.0));  // local, scaled by the Transforms
+  const double step = 0.5 * std::min({h.x, h.y, h.z}) / std::max(glm::length(up), 1e-12);  // world m per step
+  const glm::dvec3 from = origin->indexToLocal(glm::dvec3(c.x(), c.y(), c.z()));
+  const glm::ivec3 dims = origin->dims();
+  auto density = origin->grid().getConstAccessor();
+  double depth = 0.0;
+  for (int k = 1; k < 4096; ++k) {
+    const glm::dvec3 index = origin->localToIndex(from + double(k) * step * up);
+    const glm::ivec3 i(glm::round(index));
+    depth = double(k) * step;
+    if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, dims))) break;
+    if (phi(density.getValue(openvdb::Coord(i.x, i.y, i.z))) < 0.5) break;
+  }
+  known->second = float(depth);
+  return depth;
+}
 
 double RegionAccounting::SoftTissue::wallAt(const openvdb::Coord& c, const glm::dvec3& world) {
   // Most of a lesson's cutting is far from the pulp: one box test.
@@ -358,6 +386,7 @@ void RegionAccounting::burrAt(const Pose& pose, const BurrHead& head, double t) 
     }
     if (entered && result.firstEntry < 0.0) {
       result.firstEntry = t;
+      result.thinnestWall = 0.0;  // none left
       stampViolation(s.region, t);
     }
   }
@@ -391,8 +420,13 @@ void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t)
               inTarget |= !results_[r].forbidden;
             }
           if (!inTarget) now[outsideSlot_] += lost * v.voxelVolume;
-          // A voxel cut through (to the surface, φ ≤ ½) near a forbidden soft tissue: the wall left over it.
-          if (v.phi(block.values[std::size_t((z * 8 + y) * 8 + x)]) <= 0.5)
+          // A voxel cut through (to the surface, φ ≤ ½): how deep the cut is, and the wall it leaves
+          // over a forbidden soft tissue near it.
+          // (Not a voxel the surface only grazed: it held more than half material at the start.)
+          const bool cutThrough =
+              v.phi(block.values[std::size_t((z * 8 + y) * 8 + x)]) <= 0.5 && v.phi(startLeaf->getValue(c)) > 0.5;
+          if (cutThrough) summary_.deepestCut = std::max(summary_.deepestCut, v.depthBelowSurface(c, voxelKey(c)));
+          if (cutThrough)
             for (const auto& sp : soft_)
               if (sp->volume == vi && results_[sp->region].thinnestWall != 0.0)  // 0: entered, nothing thinner
                 if (const double left = sp->wallAt(c, w); left >= 0.0) {
@@ -418,13 +452,18 @@ void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t)
   stampCompletion(t);
 }
 
+// A target that held nothing at the start (check warns of it) cannot be done
+// and does not hold the others back.
 void RegionAccounting::stampCompletion(double t) {
   if (!summary_.hasTargets || summary_.completed >= 0.0) return;
-  for (std::size_t r = 0; r < regions_.size(); ++r)
-    if (const auto* target = dynamic_cast<const MillingTarget*>(regions_[r]->node);
-        target && !(results_[r].fraction() >= double(target->completeAt.get())))
-      return;
-  summary_.completed = t;
+  bool any = false;
+  for (std::size_t r = 0; r < regions_.size(); ++r) {
+    const auto* target = dynamic_cast<const MillingTarget*>(regions_[r]->node);
+    if (!target || !(results_[r].initial > 0.0)) continue;
+    if (!(results_[r].fraction() >= double(target->completeAt.get()))) return;
+    any = true;
+  }
+  if (any) summary_.completed = t;
 }
 
 void RegionAccounting::publishFields() {

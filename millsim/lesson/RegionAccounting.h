@@ -57,6 +57,9 @@ struct RemovalSummary {
   double targetsInitial = 0.0;           // m³ of material the targets held at the start (their union)
   double overPreparationPenalty = 1.0;   // the largest of the targets' MillingTarget.overPreparationPenalty
   double completed = -1.0;               // s: when every target first reached its completeAt; -1: never
+  // m: the deepest voxel cut through, below the volume's original surface
+  // straight above it (world +Y: the occlusal direction of an upright tooth).
+  double deepestCut = 0.0;
   std::vector<std::pair<std::string, double>> byTissue;  // m³ removed per tissue name ("no tissue": material of none)
   // Removal outside the targets over the material the targets held (0 without targets).
   double overPreparation() const { return targetsInitial > 0.0 ? outsideTargets / targetsInitial : 0.0; }

@@ -59,6 +59,7 @@ std::string reportJson(const LessonReport& r) {
     j["over_preparation_penalty"] = r.removal.overPreparationPenalty;
     j["completed_s"] = r.removal.completed >= 0.0 ? Json(r.removal.completed) : Json(nullptr);
   }
+  j["deepest_cut_mm"] = r.removal.deepestCut * 1e3;
   j["tissues"] = Json::array();
   for (const auto& [name, removed] : r.removal.byTissue) j["tissues"].push_back(Json{{"name", name}, {"removed_mm3", removed * 1e9}});
   const double score = lessonScore(r);
@@ -142,6 +143,7 @@ LessonReport readReport(const std::string& path) {
   if (r.removal.targetsInitial == 0.0)
     for (const RegionResult& g : r.regions) r.removal.targetsInitial += g.forbidden ? 0.0 : g.initial;
   if (j.contains("completed_s") && !j["completed_s"].is_null()) r.removal.completed = number(j, "completed_s", "the report");
+  if (j.contains("deepest_cut_mm")) r.removal.deepestCut = number(j, "deepest_cut_mm", "the report") * 1e-3;
   if (j.contains("tissues"))
     for (const Json& t : j["tissues"]) r.removal.byTissue.emplace_back(text(t, "name", "a tissue"), number(t, "removed_mm3", "a tissue") * 1e-9);
   return r;
@@ -187,6 +189,7 @@ std::string describeReport(const LessonReport& r, bool markdown) {
         << std::setprecision(1) << 100.0 * r.removal.overPreparation() << " % of the targets' material; penalty "
         << std::setprecision(2) << r.removal.overPreparationPenalty << ") |\n"
         << "| targets done | " << completedText(r.removal) << " |\n";
+    o << "| deepest cut | " << std::setprecision(2) << r.removal.deepestCut * 1e3 << " mm below the surface |\n";
     o << "| **score** | **" << scoreText << "** |\n\n";
     if (!r.removal.byTissue.empty()) {
       o << "| tissue | removed (mm³) |\n|---|---|\n";
@@ -229,6 +232,7 @@ std::string describeReport(const LessonReport& r, bool markdown) {
       << std::setprecision(1) << 100.0 * r.removal.overPreparation() << " % of the targets' material, penalty "
       << std::setprecision(2) << r.removal.overPreparationPenalty << "); targets done " << completedText(r.removal)
       << "\n";
+  o << "  deepest cut " << std::setprecision(2) << r.removal.deepestCut * 1e3 << " mm below the surface\n";
   if (!r.removal.byTissue.empty()) {
     o << "  removed per tissue:";
     for (const auto& [name, removed] : r.removal.byTissue)
@@ -242,7 +246,7 @@ std::string describeReport(const LessonReport& r, bool markdown) {
 std::string reportsCsv(const std::vector<std::pair<std::string, LessonReport>>& reports) {
   std::ostringstream o;
   o << "file,scene,renderer,duration_s,removed_mm3,targets_fraction,outside_targets_mm3,over_preparation,"
-       "completed_s,violations,first_violation_s,peak_force_N,score\n";
+       "completed_s,deepest_cut_mm,thinnest_wall_mm,violations,first_violation_s,peak_force_N,score\n";
   auto cell = [](const std::string& s) {  // RFC 4180: quote a cell holding a comma, quote or newline
     if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
     std::string q = "\"";
@@ -251,10 +255,11 @@ std::string reportsCsv(const std::vector<std::pair<std::string, LessonReport>>& 
   };
   auto number = [](double v) { return (std::ostringstream() << std::setprecision(6) << v).str(); };
   for (const auto& [file, r] : reports) {
-    double fractions = 0.0, firstViolation = -1.0;
+    double fractions = 0.0, firstViolation = -1.0, wall = -1.0;
     int targets = 0, violations = 0;
     for (const RegionResult& g : r.regions) {
       if (!g.forbidden) fractions += std::min(1.0, g.fraction()), ++targets;
+      if (g.forbidden && g.thinnestWall >= 0.0 && (wall < 0.0 || g.thinnestWall < wall)) wall = g.thinnestWall;
       if (g.forbidden && g.firstViolation >= 0.0) {
         ++violations;
         if (firstViolation < 0.0 || g.firstViolation < firstViolation) firstViolation = g.firstViolation;
@@ -265,7 +270,8 @@ std::string reportsCsv(const std::vector<std::pair<std::string, LessonReport>>& 
       << number(r.removed * 1e9) << ',' << (targets ? number(fractions / targets) : "") << ','
       << (r.removal.hasTargets ? number(r.removal.outsideTargets * 1e9) : "") << ','
       << (r.removal.hasTargets ? number(r.removal.overPreparation()) : "") << ','
-      << (r.removal.completed >= 0.0 ? number(r.removal.completed) : "") << ',' << violations << ','
+      << (r.removal.completed >= 0.0 ? number(r.removal.completed) : "") << ',' << number(r.removal.deepestCut * 1e3)
+      << ',' << (wall >= 0.0 ? number(wall * 1e3) : "") << ',' << violations << ','
       << (firstViolation >= 0.0 ? number(firstViolation) : "") << ',' << number(r.peakForce) << ','
       << (score >= 0.0 ? number(score) : "") << "\n";
   }

@@ -176,6 +176,16 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
   live_ = std::make_unique<LiveUpdates>(run, *loop_);
 }
 
+// The window's pointer gives world poses: the scene device's calibration,
+// which maps that device's own coordinates into the scene, does not apply to
+// them. (A trajectory's rows are the device's coordinates, as replay reads
+// them: a stand-in trajectory is calibrated as the device would be.)
+void Session::moveInTheWorld() {
+  run_->settings.calibrationRotation = glm::dquat(1.0, 0.0, 0.0, 0.0);
+  run_->settings.calibrationOffset = glm::dvec3(0.0);
+  run_->settings.positionScale = 1.0;
+}
+
 std::unique_ptr<DeviceDriver> Session::openReplacedDevice(const HapticsDevice& device,
                                                          SessionOptions::DeviceSource replaced) {
   using DeviceSource = SessionOptions::DeviceSource;
@@ -188,6 +198,7 @@ std::unique_ptr<DeviceDriver> Session::openReplacedDevice(const HapticsDevice& d
                         "DISPLAY, or --no-window); replace the device with a trajectory or a hand instead");
     const auto start = device.pointerStart();
     const HapticsDevice::PointerStart from = start ? *start : HapticsDevice::PointerStart{};
+    moveInTheWorld();
     pointer_ = std::make_unique<PointerInput>(from.pose);
     driver = MousePointerFields::followPointer(*pointer_);
     graphicsOptions_.pointer = pointer_.get();

@@ -66,7 +66,9 @@ struct SessionOptions {
   // device is replaced by it (played open loop, as replay does).
   std::shared_ptr<const Trajectory> trajectory;
   // openDevice: what drives the run in place of the scene's device node (its
-  // renderer, tool, limits and calibration stay), so that one lesson file
+  // renderer, tool, limits and calibration stay: trajectory rows are the
+  // device's coordinates, as replay reads them; the mouse moves in the
+  // scene's own), so that one lesson file
   // serves students at a device and tests or demonstrations without one:
   // Trajectory plays `trajectory` (or the device's own) open loop, Hand pulls
   // a simulated hand along it (the HandDevice's fields, else HandDevice's
@@ -189,6 +191,8 @@ private:
   void startGraphics();
   // openDevice with SessionOptions::deviceSource other than Scene: the driver in the device node's place.
   std::unique_ptr<DeviceDriver> openReplacedDevice(const HapticsDevice& device, SessionOptions::DeviceSource replaced);
+  // The mouse as a stand-in moves in the world: no calibration.
+  void moveInTheWorld();
   std::size_t drain();
   // The newest frame into the scene: device fields, regions, removed volumes.
   void publishFrame();

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <dlfcn.h>
@@ -174,8 +175,9 @@ void readInAProbeFirst(const std::string& name) {
     pollfd p{fds[0], POLLIN, 0};
     const int ready = left.count() > 0 ? poll(&p, 1, int(std::min<long long>(left.count(), 1 << 30))) : 0;
     if (ready < 0 && errno == EINTR) continue;
-    if (ready <= 0) {
+    if (ready <= 0) {  // the deadline (the loop below kills the probe), or an error polling
       late = ready == 0;
+      if (late) kill(pid, SIGKILL);
       break;
     }
     const ssize_t n = read(fds[0], buffer, sizeof buffer);
@@ -184,12 +186,28 @@ void readInAProbeFirst(const std::string& name) {
     if (message.size() < 65536) message.append(buffer, std::size_t(n));
   }
   close(fds[0]);
-  if (late) kill(pid, SIGKILL);
+  // The probe's end, within the same deadline however the pipe ended (EOF, an
+  // error, or the deadline itself); past it the probe is killed.
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, late ? 0 : WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno == EINTR) continue;
+    if (done < 0)  // reaped elsewhere (SIGCHLD ignored, another thread's handler): nothing says the read succeeded
+      throw VolumeError(name + ": cannot check the file (waitpid: " + std::strerror(errno) + ")");
+    if (std::chrono::steady_clock::now() >= deadline) {
+      kill(pid, SIGKILL);
+      late = true;
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && !message.empty()) throw VolumeError(message);
+  // 126 and 127: the probe could not be started (not executable, or its libraries not found).
+  if (WIFEXITED(status) && (WEXITSTATUS(status) == 126 || WEXITSTATUS(status) == 127))
+    throw VolumeError(name + ": cannot check the file: " + probePath + " could not start (status " +
+                      std::to_string(WEXITSTATUS(status)) + "; are its libraries, OpenVDB's, installed?)");
   const int signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   const std::string what =
       late                ? "did not finish within " + std::to_string(seconds) + " s"

@@ -25,9 +25,14 @@ namespace {
 void limitThisProcess(const char* file) {
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(file, ec);
+  // The soft limit sends SIGXCPU (what the caller reports); the hard one, 2 s
+  // later, SIGKILL. No core file for a corrupt file's crash.
   rlimit cpu{};
-  cpu.rlim_cur = cpu.rlim_max = rlim_t(60 + (ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20)));
+  cpu.rlim_cur = rlim_t(60 + (ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20)));
+  cpu.rlim_max = cpu.rlim_cur + 2;
   setrlimit(RLIMIT_CPU, &cpu);
+  rlimit core{};
+  setrlimit(RLIMIT_CORE, &core);
   long pages = 0;
   if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
     if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;

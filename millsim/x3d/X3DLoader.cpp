@@ -555,7 +555,8 @@ private:
     } catch (const std::exception&) {
       return;
     }
-    const bool low = v > 0.0 && v * 10.0 <= r->usualLo, high = v >= r->usualHi * 10.0;
+    // (A float field holds 0.002 as a hair over it: ten times is ten times to a float's precision.)
+    const bool low = v > 0.0 && v * 10.0 <= r->usualLo * (1.0 + 1e-6), high = v >= r->usualHi * 10.0 * (1.0 - 1e-6);
     if (!low && !high) return;
     const double factor = units.factor(r->quantity);
     std::string read = "'" + text + "'";

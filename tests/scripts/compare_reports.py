@@ -26,7 +26,7 @@ def compare(a, b):
     if (a["score"] is None) != (b["score"] is None) or (a["score"] is not None and not close(a["score"], b["score"])):
         problems.append(f"score: {a['score']} != {b['score']}")
     # Over-preparation and removal per tissue (reports since issue 47 part 6): the same blocks, the same sums.
-    for key in ("outside_targets_mm3", "over_preparation"):
+    for key in ("outside_targets_mm3", "over_preparation", "deepest_cut_mm"):
         if (key in a) != (key in b) or (key in a and not close(a[key], b[key])):
             problems.append(f"{key}: {a.get(key)} != {b.get(key)}")
     ca, cb = a.get("completed_s"), b.get("completed_s")

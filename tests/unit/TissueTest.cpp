@@ -327,6 +327,15 @@ TEST(Regions, TheThinnestWallLeftOverThePulpIsReported) {
     for (const glm::dvec3& b : pulpVoxels) nearest = std::min(nearest, glm::length(a - b));
   const double h = fresh.voxelSize().x;
   EXPECT_NEAR(wall, (nearest - 0.5) * h, 0.6 * h) << "brute force: " << nearest << " voxels centre to centre";
+  // The deepest cut, recounted: the lowest voxel cut through, below the top
+  // of the starting material in its own column (the cut is straight down).
+  double deepest = 0.0;
+  for (const glm::dvec3& a : cut) {
+    int top = int(a.y);
+    while (top + 1 < fresh.dims().y && phi(fresh.valueAt(int(a.x), top + 1, int(a.z))) > 0.5) ++top;
+    deepest = std::max(deepest, (top - a.y + 0.5) * h);
+  }
+  EXPECT_NEAR(medium.summary.deepestCut, deepest, 0.6 * h);
   EXPECT_LT(millDown(0.0035, 3.0, 1e9).results[1].thinnestWall, 0.25e-3);
   const double far = millDown(0.0078, 1.0, 1e9).results[1].thinnestWall;
   EXPECT_TRUE(far < 0.0 || far > 1.5e-3) << far;

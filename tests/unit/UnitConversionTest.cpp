@@ -86,8 +86,11 @@ TEST(Units, EveryFieldsQuantityMatchesTheUnitItsDocumentationNames) {
   }
   EXPECT_GT(tagged, 40);  // the check above must have had something to compare
   // And the unit `check` prints after each value is the one the doc names.
-  for (const auto& [name, q] : units)
-    if (name != "metres" && name != "radians") EXPECT_EQ(siUnit(q), name);
+  for (const auto& [name, q] : units) {
+    if (name != "metres" && name != "radians") {
+      EXPECT_EQ(siUnit(q), name);
+    }
+  }
   EXPECT_EQ(siUnit(quantity::length), "m");
   EXPECT_EQ(siUnit(Quantity{}), "");
 }

@@ -839,6 +839,15 @@ TEST(VolumeIOVdb, AMissingProbeIsAClearError) {
   unsetenv("MILLSIM_VDB_PROBE");
   EXPECT_NE(message.find("millsim-vdb-probe is not at " + missing.string()), std::string::npos) << message;
   EXPECT_NE(message.find("set MILLSIM_VDB_PROBE"), std::string::npos) << message;
+  // A probe that cannot start (its libraries missing: the loader exits 127) is
+  // not a corrupt file.
+  const fs::path broken = dir.write("broken-probe", "#!/bin/sh\nexit 127\n");
+  fs::permissions(broken, fs::perms::owner_all);
+  setenv("MILLSIM_VDB_PROBE", broken.c_str(), 1);
+  const std::string cannotStart = errorOf([&] { (void)readVdb(dir.path() / "ok.vdb", -1000.f); });
+  unsetenv("MILLSIM_VDB_PROBE");
+  EXPECT_NE(cannotStart.find("could not start (status 127"), std::string::npos) << cannotStart;
+  EXPECT_EQ(cannotStart.find("corrupt"), std::string::npos) << cannotStart;
   expectSame(readVdb(dir.path() / "ok.vdb", -1000.f), sampleVolume());
 }
 
