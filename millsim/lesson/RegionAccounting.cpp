@@ -109,6 +109,9 @@ struct RegionAccounting::SoftTissue {
 };
 
 namespace {
+const openvdb::Coord kFaceNeighbours[] = {openvdb::Coord(1, 0, 0),  openvdb::Coord(-1, 0, 0), openvdb::Coord(0, 1, 0),
+                                          openvdb::Coord(0, -1, 0), openvdb::Coord(0, 0, 1),  openvdb::Coord(0, 0, -1)};
+
 // A cube of kWallReach on a side: every surface voxel within kWallReach of a
 // point lies in the point's cell or one of its 26 neighbours.
 std::uint64_t wallCell(const glm::dvec3& world, int di = 0, int dj = 0, int dk = 0) {
@@ -307,8 +310,7 @@ void RegionAccounting::findSoftTissues() {
           if (!(density.getValue(*c) < v.iso)) continue;
           s->box.expand(*c);
           fogAccess.setValue(*c, 1.f);
-          for (const openvdb::Coord& d : {openvdb::Coord(1, 0, 0), openvdb::Coord(-1, 0, 0), openvdb::Coord(0, 1, 0),
-                                          openvdb::Coord(0, -1, 0), openvdb::Coord(0, 0, 1), openvdb::Coord(0, 0, -1)})
+          for (const openvdb::Coord& d : kFaceNeighbours)
             if (!fogAccess.isValueOn(*c + d)) fogAccess.setValueOn(*c + d, 0.f);
         }
       }
@@ -324,8 +326,7 @@ void RegionAccounting::findSoftTissues() {
         if (*it != 1.f) continue;
         const openvdb::Coord c = it.getCoord();
         bool surface = false;
-        for (const openvdb::Coord& d : {openvdb::Coord(1, 0, 0), openvdb::Coord(-1, 0, 0), openvdb::Coord(0, 1, 0),
-                                        openvdb::Coord(0, -1, 0), openvdb::Coord(0, 0, 1), openvdb::Coord(0, 0, -1)})
+        for (const openvdb::Coord& d : kFaceNeighbours)
           surface |= fogAccess.getValue(c + d) != 1.f;
         if (!surface) continue;
         const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
