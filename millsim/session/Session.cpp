@@ -100,6 +100,11 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
     run.settings.calibrationOffset = glm::dvec3(0.0);
   }
 
+  // The lesson's regions and their starting material, measured before a
+  // device is opened: a device waits for its first frame from then on (and a
+  // watchdog or a library's servo loop counts that wait).
+  regions_ = std::make_unique<RegionAccounting>(scene);
+
   std::unique_ptr<DeviceDriver> driver;
   HapticsDevice& device = *run.device;
   deviceName_ = device.typeName() + (device.defName().empty() ? "" : " '" + device.defName() + "'");
@@ -147,7 +152,6 @@ Session::Session(Scene& scene, const SessionOptions& options, Source source, con
   loop_ = std::make_unique<HapticLoop>(*run.scene, std::move(run.algorithm), std::move(driver), run.settings);
 
   // Assessment counts on the scene thread, from blocks the loop publishes.
-  regions_ = std::make_unique<RegionAccounting>(scene);
   if (!regions_->empty())
     for (std::size_t i = 0; i < regions_->volumeCount(); ++i) loop_->publishBlocks(i, regions_->channel(i));
   if (!options.soundOut.empty() || options.liveSound) {
