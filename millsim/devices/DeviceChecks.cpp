@@ -10,6 +10,7 @@
 #include "millsim/core/Scene.h"
 #include "millsim/devices/HapticsDevice.h"
 #include "millsim/devices/Trajectory.h"
+#include "millsim/devices/TrajectoryUnits.h"
 #include "millsim/std/Transform.h"
 #include "millsim/volume/PlacedVolumes.h"
 #include "millsim/volume/PointShell.h"
@@ -190,15 +191,12 @@ std::string trajectoryReachWarning(const Scene& scene, const Trajectory& traject
   std::string sentence = label + " never comes within the tool's reach (" + mm(reach) + " mm) of a volume: its " +
                          "nearest position is " + mm(distance) + " mm from the " + describe(*which) +
                          "; positions are read in metres";
-  struct Unit {
-    const char* name;
-    double metres;
-  };
-  for (const Unit u : {Unit{"mm", 1e-3}, Unit{"cm", 1e-2}, Unit{"um", 1e-6}}) {
+  for (const TrajectoryLengthUnit& u : kTrajectoryLengthUnits) {
     const VolumeObject* near = nullptr;
-    if (nearest(trajectory, device, boxes, u.metres, &near) <= reach)
-      return sentence + ". Read in " + u.name + " it would reach the " + describe(*near) + ": if the file is in " +
-             u.name + ", say so in its header (t,x_" + u.name + ",y_" + u.name + ",z_" + u.name + ",qw,qx,qy,qz,button)";
+    if (u.metres == 1.0 || nearest(trajectory, device, boxes, u.metres, &near) > reach) continue;
+    const std::string name(u.name);
+    return sentence + ". Read in " + name + " it would reach the " + describe(*near) + ": if the file is in " + name +
+           ", say so in its header (t,x_" + name + ",y_" + name + ",z_" + name + ",qw,qx,qy,qz,button)";
   }
   return sentence + "; check its positions against the volume's place (a Transform above the VolumeObject moves it)";
 }

@@ -9,6 +9,7 @@
 
 #include "millsim/core/FieldValues.h"
 #include "millsim/devices/RecordedRun.h"
+#include "millsim/devices/TrajectoryUnits.h"
 
 namespace millsim {
 
@@ -36,11 +37,6 @@ std::vector<std::string_view> splitCsv(std::string_view line) {
 // means. Without one, metres, as a run's log writes them. The cells are
 // renamed to x, y, z for the column check that follows; returns metres per unit.
 double headerLengthUnit(std::vector<std::string_view>& cells, const std::string& header) {
-  struct Unit {
-    std::string_view name;
-    double metres;
-  };
-  static constexpr Unit kUnits[] = {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}};
   const char* const axes[] = {"x", "y", "z"};
   std::string_view unit;
   int named = 0;
@@ -48,7 +44,8 @@ double headerLengthUnit(std::vector<std::string_view>& cells, const std::string&
     std::string_view& cell = cells[std::size_t(a + 1)];
     if (cell.size() < 3 || cell.substr(0, 2) != std::string(axes[a]) + "_") continue;
     const std::string_view u = cell.substr(2);
-    if (std::none_of(std::begin(kUnits), std::end(kUnits), [&](const Unit& k) { return k.name == u; }))
+    if (std::none_of(std::begin(kTrajectoryLengthUnits), std::end(kTrajectoryLengthUnits),
+                     [&](const TrajectoryLengthUnit& k) { return k.name == u; }))
       throw TrajectoryError(header + "column '" + std::string(cell) + "' names the length unit '" + std::string(u) +
                             "'; the units a header may name are m, cm, mm and um (x_mm,y_mm,z_mm)");
     if (named > 0 && u != unit)
@@ -62,7 +59,7 @@ double headerLengthUnit(std::vector<std::string_view>& cells, const std::string&
     throw TrajectoryError(header + "only some of x, y and z name a unit ('" + std::string(unit) +
                           "'); name it on all three (x_" + std::string(unit) + ",y_" + std::string(unit) + ",z_" +
                           std::string(unit) + ")");
-  for (const Unit& k : kUnits)
+  for (const TrajectoryLengthUnit& k : kTrajectoryLengthUnits)
     if (k.name == unit) return k.metres;
   return 1.0;
 }

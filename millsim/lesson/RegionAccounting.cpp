@@ -81,7 +81,7 @@ struct RegionAccounting::Volume {
   // How far below the original surface voxel c lies, straight up (world +Y),
   // in half-voxel steps: the first point above it whose starting material is
   // under half, or the volume's edge.
-  double depthBelowSurface(const openvdb::Coord& c, std::uint64_t key);
+  double depthBelowSurface(const openvdb::Coord& c);
   double phi(double v) const { return std::clamp((v - air) * phiScale, 0.0, 1.0); }
   glm::dvec3 world(int i, int j, int k) const {
     return glm::dvec3(localToWorld * glm::dvec4(origin->indexToLocal(glm::dvec3(i, j, k)), 1.0));
@@ -126,8 +126,8 @@ std::uint64_t voxelKey(const openvdb::Coord& c) {
 }
 }  // namespace
 
-double RegionAccounting::Volume::depthBelowSurface(const openvdb::Coord& c, std::uint64_t key) {
-  const auto [known, added] = depths.try_emplace(key, 0.f);
+double RegionAccounting::Volume::depthBelowSurface(const openvdb::Coord& c) {
+  const auto [known, added] = depths.try_emplace(voxelKey(c), 0.f);
   if (!added) return known->second;
   const glm::dvec3 h = origin->voxelSize();
   const glm::dvec3 up = glm::dvec3(worldToLocal * glm::dvec4(0.0, 1.0, 0.0, 0.0));  // local, scaled by the Transforms
@@ -426,7 +426,7 @@ void RegionAccounting::count(std::size_t vi, const BlockUpdate& block, double t)
           // (Not a voxel the surface only grazed: it held more than half material at the start.)
           const bool cutThrough =
               v.phi(block.values[std::size_t((z * 8 + y) * 8 + x)]) <= 0.5 && v.phi(startLeaf->getValue(c)) > 0.5;
-          if (cutThrough) summary_.deepestCut = std::max(summary_.deepestCut, v.depthBelowSurface(c, voxelKey(c)));
+          if (cutThrough) summary_.deepestCut = std::max(summary_.deepestCut, v.depthBelowSurface(c));
           if (cutThrough)
             for (const auto& sp : soft_)
               if (sp->volume == vi && results_[sp->region].thinnestWall != 0.0)  // 0: entered, nothing thinner

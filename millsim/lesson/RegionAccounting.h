@@ -68,8 +68,8 @@ struct RemovalSummary {
 class RegionAccounting {
 public:
   // How far from a soft tissue the remaining wall is measured (m): thinner
-  // walls are what a teacher looks at, and the distance field costs memory
-  // and time with its width.
+  // walls are what a teacher looks at, and each cut voxel's search for the
+  // nearest surface voxel grows with the cube of it.
   static constexpr double kWallReach = 3e-3;
   // Collects the scene's regions and loaded volumes (in placedVolumes order,
   // the haptic scene's) and measures each region's material. Call before

@@ -13,20 +13,24 @@ namespace millsim {
 
 using Json = nlohmann::ordered_json;
 
-double lessonScore(const LessonReport& r) {
+namespace {
+// The mean over the targets of min(1, fraction); negative without targets.
+double targetsFraction(const LessonReport& r) {
   double sum = 0.0;
-  int targets = 0, violations = 0;
-  for (const RegionResult& g : r.regions) {
-    if (g.forbidden) {
-      violations += g.firstViolation >= 0.0;
-    } else {
-      sum += std::min(1.0, g.fraction());
-      ++targets;
-    }
-  }
-  if (targets == 0) return -1.0;
+  int targets = 0;
+  for (const RegionResult& g : r.regions)
+    if (!g.forbidden) sum += std::min(1.0, g.fraction()), ++targets;
+  return targets ? sum / targets : -1.0;
+}
+}  // namespace
+
+double lessonScore(const LessonReport& r) {
+  const double done = targetsFraction(r);
+  if (done < 0.0) return -1.0;
+  int violations = 0;
+  for (const RegionResult& g : r.regions) violations += g.forbidden && g.firstViolation >= 0.0;
   const double overPrepared = std::max(0.0, 1.0 - r.removal.overPreparationPenalty * r.removal.overPreparation());
-  return 100.0 * sum / targets * std::pow(0.5, violations) * overPrepared;
+  return 100.0 * done * std::pow(0.5, violations) * overPrepared;
 }
 
 std::string reportJson(const LessonReport& r) {
@@ -255,19 +259,18 @@ std::string reportsCsv(const std::vector<std::pair<std::string, LessonReport>>& 
   };
   auto number = [](double v) { return (std::ostringstream() << std::setprecision(6) << v).str(); };
   for (const auto& [file, r] : reports) {
-    double fractions = 0.0, firstViolation = -1.0, wall = -1.0;
-    int targets = 0, violations = 0;
+    double firstViolation = -1.0, wall = -1.0;
+    int violations = 0;
     for (const RegionResult& g : r.regions) {
-      if (!g.forbidden) fractions += std::min(1.0, g.fraction()), ++targets;
       if (g.forbidden && g.thinnestWall >= 0.0 && (wall < 0.0 || g.thinnestWall < wall)) wall = g.thinnestWall;
       if (g.forbidden && g.firstViolation >= 0.0) {
         ++violations;
         if (firstViolation < 0.0 || g.firstViolation < firstViolation) firstViolation = g.firstViolation;
       }
     }
-    const double score = lessonScore(r);
+    const double score = lessonScore(r), done = targetsFraction(r);
     o << cell(file) << ',' << cell(r.scene) << ',' << cell(r.renderer) << ',' << number(r.duration) << ','
-      << number(r.removed * 1e9) << ',' << (targets ? number(fractions / targets) : "") << ','
+      << number(r.removed * 1e9) << ',' << (done >= 0.0 ? number(done) : "") << ','
       << (r.removal.hasTargets ? number(r.removal.outsideTargets * 1e9) : "") << ','
       << (r.removal.hasTargets ? number(r.removal.overPreparation()) : "") << ','
       << (r.removal.completed >= 0.0 ? number(r.removal.completed) : "") << ',' << number(r.removal.deepestCut * 1e3)

@@ -47,8 +47,8 @@
 namespace millsim {
 
 class EventClock;
-class HapticsDevice;
 class FieldWatch;
+class HapticsDevice;
 class FrameLogWriter;
 class HudFeed;
 class LiveUpdates;
@@ -65,14 +65,14 @@ struct SessionOptions {
   // openDevice: a simulated device follows this instead of its url; any other
   // device is replaced by it (played open loop, as replay does).
   std::shared_ptr<const Trajectory> trajectory;
-  // openDevice: what drives the run in place of the scene's device node (its
-  // renderer, tool, limits and calibration stay: trajectory rows are the
-  // device's coordinates, as replay reads them; the mouse moves in the
-  // scene's own), so that one lesson file
-  // serves students at a device and tests or demonstrations without one:
-  // Trajectory plays `trajectory` (or the device's own) open loop, Hand pulls
-  // a simulated hand along it (the HandDevice's fields, else HandDevice's
-  // defaults), Mouse follows the window's mouse (needs Display::Window).
+  // openDevice: what drives the run in place of the scene's device node, so
+  // that one lesson file serves students at a device and tests or
+  // demonstrations without one. The node's renderer, tool, limits and
+  // calibration stay (trajectory rows are the device's coordinates, as replay
+  // reads them; the mouse moves in the scene's own). Trajectory plays
+  // `trajectory` (or the device's own) open loop, Hand pulls a simulated hand
+  // along it (the HandDevice's fields, else HandDevice's defaults), Mouse
+  // follows the window's mouse (needs Display::Window).
   enum class DeviceSource { Scene, Trajectory, Hand, Mouse };
   DeviceSource deviceSource = DeviceSource::Scene;
   // replay and review: stop after this trajectory time (s).

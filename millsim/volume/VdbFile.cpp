@@ -119,7 +119,8 @@ openvdb::FloatGrid::Ptr copyClipped(const openvdb::FloatGrid& file, glm::ivec3 d
 // one that crashes, is stopped by its limits or outlives the wall-clock limit
 // makes the file refused. It is spawned, not forked: a forked copy of this
 // process would hold every lock its other threads held at the fork (CI saw
-// one wait a minute). About 15 ms for the spawn and one more read of the file.
+// one wait a minute). About 70 ms to start the probe (it loads OpenVDB), and
+// one more read of the file: 0.10 s in all for the full-size phantom.
 
 // Where the probe is: MILLSIM_VDB_PROBE, else next to libmillsim (the build
 // tree), else in the install's libexec folder relative to it.
@@ -161,11 +162,8 @@ void readInAProbeFirst(const std::string& name) {
     close(fds[0]);
     throw VolumeError(name + ": cannot check the file (starting " + probePath + ": " + std::strerror(spawned) + ")");
   }
-  // Wall-clock time too: the probe's CPU-time limit does not stop a process
-  // that waits. A minute, and a second per megabyte, as the probe's CPU time.
-  std::error_code ec;
-  const std::uintmax_t bytes = fs::file_size(name, ec);
-  const int seconds = 60 + int(ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20));
+  // Wall-clock time too: the probe's CPU-time limit does not stop a process that waits.
+  const int seconds = vdbReadSeconds(name);
   std::string message;
   char buffer[4096];
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);

@@ -2,6 +2,7 @@
 #include "millsim/volume/VdbGrids.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 #include <openvdb/io/File.h>
@@ -35,6 +36,12 @@ void refuseOversizedGrid(const std::string& name, const openvdb::GridBase& grid)
 }
 
 }  // namespace
+
+int vdbReadSeconds(const std::string& name) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(name, ec);
+  return 60 + int(ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20));
+}
 
 // The statistics OpenVDB writes with every grid (bounding box, memory) are
 // read without the trees, so a grid far larger than a volume may be is refused

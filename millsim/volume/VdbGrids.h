@@ -15,6 +15,11 @@ namespace millsim {
 // twice that leaves room for the tree.
 inline constexpr std::int64_t kMaxGridBytes = std::int64_t(kMaxVoxels) * 8;
 
+// How long reading the file may take, in seconds of CPU time in the probe
+// and of wall-clock time in the caller: a minute and a second per megabyte,
+// far above a real file's need.
+int vdbReadSeconds(const std::string& name);
+
 // Every grid of the file `name`, read now; a grid whose statistics say it is
 // larger than a volume may be is refused (VolumeError) before its tree is read.
 openvdb::GridPtrVecPtr readVdbGrids(const std::string& name);

@@ -10,25 +10,21 @@
 
 #include <sys/resource.h>
 
-#include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 
 #include "millsim/volume/VdbGrids.h"
 
 namespace {
 
-// A minute of CPU time and a second per megabyte is far above a real file's
-// need; the address space is what this process maps now (under ASan, its
-// shadow) plus what a volume's grid may take (millsim::kMaxGridBytes) and a margin.
+// CPU time as the caller's wall-clock limit (vdbReadSeconds); the address
+// space is what this process maps now (under ASan, its shadow) plus what a
+// volume's grid may take (millsim::kMaxGridBytes) and a margin.
 void limitThisProcess(const char* file) {
-  std::error_code ec;
-  const std::uintmax_t bytes = std::filesystem::file_size(file, ec);
   // The soft limit sends SIGXCPU (what the caller reports); the hard one, 2 s
   // later, SIGKILL. No core file for a corrupt file's crash.
   rlimit cpu{};
-  cpu.rlim_cur = rlim_t(60 + (ec ? 0 : std::min<std::uintmax_t>(bytes >> 20, 1 << 20)));
+  cpu.rlim_cur = rlim_t(millsim::vdbReadSeconds(file));
   cpu.rlim_max = cpu.rlim_cur + 2;
   setrlimit(RLIMIT_CPU, &cpu);
   rlimit core{};
