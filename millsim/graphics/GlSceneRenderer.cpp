@@ -48,6 +48,7 @@ public:
   GlSceneRenderer(const Scene& scene, const RendererOptions& options)
       : context_(options.width, options.height), drawer_(std::make_unique<SceneDrawer>(viewWithVoxels(scene, options))) {
     drawer_->setLevelOfDetail(options.levelOfDetail);
+    drawer_->setCapCuts(options.capCuts);
     drawer_->aim(options.width, options.height);
     GlContext::check("setting up the renderer");
   }

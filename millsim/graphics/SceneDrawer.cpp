@@ -11,6 +11,7 @@
 #include <GL/glext.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "millsim/graphics/CutCap.h"
 #include "millsim/graphics/FontAtlas.h"
 #include "millsim/graphics/GlMesh.h"
 #include "millsim/graphics/GraphicsError.h"
@@ -32,6 +33,9 @@ const DrawMaterial kShaft{glm::vec3(0.55f, 0.58f, 0.66f), glm::vec3(0.5f), glm::
 const DrawMaterial kGhost{glm::vec3(0.2f, 0.9f, 0.3f), glm::vec3(0.f), glm::vec3(0.1f, 0.4f, 0.1f), 0.5f, 0.1f};
 const DrawMaterial kMarker{glm::vec3(1.f, 0.05f, 0.05f), glm::vec3(0.3f), glm::vec3(0.25f, 0.f, 0.f), 0.3f, 0.2f};
 const DrawMaterial kTissue{glm::vec3(1.f), glm::vec3(0.22f), glm::vec3(0.f), 0.22f, 0.25f};
+// A cut's section is matt: a highlight would wash out the tissue colours a
+// teacher reads the walls by.
+const DrawMaterial kSection{glm::vec3(1.f), glm::vec3(0.f), glm::vec3(0.f), 0.22f, 0.1f};
 
 // A TriangleMesh (unshared corners) into a GlMesh: per-vertex colours when
 // `colours`, else white for the per-draw colour; texture coordinates if any.
@@ -82,10 +86,17 @@ std::size_t SceneDrawer::addVolume(const VoxelVolume& voxels, const glm::dmat4& 
 std::size_t SceneDrawer::volumeCount() const { return meshes_.size(); }
 
 void SceneDrawer::volumeChanged(std::size_t index, const std::vector<BlockOrigin>& blocks) {
-  if (!blocks.empty()) mesh(index).update(blocks);
+  if (blocks.empty()) return;
+  mesh(index).update(blocks);
+  for (auto& [key, cap] : caps_)
+    if (key.first == index) cap->update(blocks);
 }
 
-void SceneDrawer::rebuildVolume(std::size_t index) { mesh(index).build(); }
+void SceneDrawer::rebuildVolume(std::size_t index) {
+  mesh(index).build();
+  for (auto& [key, cap] : caps_)
+    if (key.first == index) cap->invalidate();
+}
 
 VolumeMesh& SceneDrawer::mesh(std::size_t index) {
   if (index >= meshes_.size())
@@ -112,6 +123,8 @@ bool SceneDrawer::adoptCuts(const SceneView& fresh) {
     scene_.cutPlanes.push_back(c);
     for (DrawVolume& v : scene_.volumes) v.cuts.push_back(int(scene_.cutPlanes.size() - 1));
   }
+  // A cap kept under an index that now names another plane samples that plane at its next draw.
+  std::erase_if(caps_, [&](const auto& entry) { return entry.first.second >= int(scene_.cutPlanes.size()); });
   return true;
 }
 
@@ -160,6 +173,9 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
     if (drawnLevels_.size() < meshes_.size()) drawnLevels_.resize(meshes_.size(), 0);
     drawnLevels_[i] = level;
   }
+  capsDrawn_ = 0;
+  if (capCuts_)
+    for (std::size_t i = 0; i < meshes_.size(); ++i) drawCaps(i);
   std::vector<const DrawShape*> seeThrough;
   for (const DrawShape& s : scene_.shapes)
     if (s.material.transparency > 0.f || s.kind == DrawShape::Kind::Text) seeThrough.push_back(&s);  // glyph edges blend
@@ -188,6 +204,25 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
   for (int i = 0; i < kMaxClipPlanes; ++i) glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
   glBindVertexArray(0);
   dropUnused();
+}
+
+void SceneDrawer::drawCaps(std::size_t i) {
+  const DrawVolume& dv = scene_.volumes[i];
+  for (int c : dv.cuts) {
+    const CutPlane& cut = scene_.cutPlanes[std::size_t(c)];
+    if (!cut.enabled) continue;
+    std::unique_ptr<CutCap>& cap = caps_[{i, c}];
+    if (!cap) cap = std::make_unique<CutCap>(*dv.voxels, float(dv.iso), dv.tissues);
+    if (!cap->aim(cut.plane, dv.localToWorld)) continue;
+    ClipPlanes others;
+    for (int o : dv.cuts)
+      if (o != c && scene_.cutPlanes[std::size_t(o)].enabled) others.push_back(scene_.cutPlanes[std::size_t(o)].plane);
+    program_->setObject(glm::dmat4(1.0), kSection, nullptr, false, others);
+    program_->setLights(dv.lights);
+    program_->setTexture(ShadedProgram::TextureMode::Section);
+    cap->draw();
+    ++capsDrawn_;
+  }
 }
 
 int SceneDrawer::levelOfDetail(std::size_t i, int height) const {
@@ -337,6 +372,8 @@ DrawStats SceneDrawer::stats() const {
     s.chunks += m->chunks();
     s.chunkUploads += m->uploads();
   }
+  s.caps = capsDrawn_;
+  for (const auto& [key, cap] : caps_) s.capTexels += cap->section().texelsSampled();
   return s;
 }
 

@@ -8,10 +8,13 @@
 // milled), the standard Shapes, the tool at its drawn pose, optionally the
 // device's own pose as a ghost, and Algorithm #1's intersection point, seen
 // through a ViewSpec, cut by the cut planes (the scene's ClipPlanes and a
-// user plane), which cut the drawing only.
+// user plane), which cut the drawing only. Where a plane cuts a volume the
+// cut is capped by the section (CutSection): each tissue in its colour, soft
+// tissue (the pulp) too, so the walls' thickness can be read off it.
 //
 // Threads: create, call and destroy it on the thread whose context is current.
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -29,6 +32,7 @@
 
 namespace millsim {
 
+class CutCap;
 class FontAtlas;
 class GlMesh;
 class ShadedProgram;
@@ -53,6 +57,8 @@ struct DrawStats {
   std::size_t triangles = 0;     // of all volume meshes, at the level each was last drawn (level 0 before a draw)
   std::size_t chunks = 0;        // chunk meshes on the GPU
   std::size_t chunkUploads = 0;  // since construction (an incremental update adds only the chunks it touched)
+  std::size_t caps = 0;          // cut caps drawn in the latest draw()
+  std::uint64_t capTexels = 0;   // section texels sampled since construction (a moved plane samples its whole section)
 };
 
 class SceneDrawer {
@@ -93,6 +99,9 @@ public:
   bool adoptView(const SceneView& fresh);
   // False: volumes are always drawn from their every-voxel mesh.
   void setLevelOfDetail(bool on) { levelOfDetail_ = on; }
+  // False: a cut shows the volume's inside surface, uncapped (X3D's plain ClipPlane).
+  void setCapCuts(bool on) { capCuts_ = on; }
+  bool capCuts() const { return capCuts_; }
   // SceneView::addUserCut: the user's own plane, facing `towards`.
   int addUserCut(const glm::dvec3& towards) { return scene_.addUserCut(towards); }
 
@@ -120,6 +129,8 @@ private:
   // Forgets GPU meshes of shapes and texts no longer in the scene.
   void dropUnused();
   ClipPlanes planesFor(const std::vector<int>& cutIndices, bool volume) const;
+  // Caps volume i where each of its enabled planes cuts it, clipped by its other planes.
+  void drawCaps(std::size_t i);
 
   SceneView scene_;
   ViewSpec view_;
@@ -133,6 +144,10 @@ private:
   std::vector<std::unique_ptr<VolumeMesh>> meshes_;
   std::vector<int> drawnLevels_;  // the level of detail each mesh was last drawn at
   bool levelOfDetail_ = true;
+  bool capCuts_ = true;
+  // (volume, cut plane index) → its cap, made on first draw and kept while the plane is there.
+  std::map<std::pair<std::size_t, int>, std::unique_ptr<CutCap>> caps_;
+  std::size_t capsDrawn_ = 0;
   struct CachedMesh {
     std::shared_ptr<const TriangleMesh> source;  // keeps the key alive
     std::unique_ptr<GlMesh> gl;

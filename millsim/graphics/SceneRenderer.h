@@ -52,6 +52,8 @@ struct RendererOptions {
   // Draw a volume from its 2×2×2-averaged mesh where a voxel covers under 1.5
   // pixels (SceneDrawer). False: always every voxel (to compare the two).
   bool levelOfDetail = true;
+  // Cap each cut by the volume's section, coloured by tissue (SceneDrawer). False: X3D's open cut.
+  bool capCuts = true;
 };
 
 using RendererStats = DrawStats;

@@ -47,7 +47,8 @@ void main() {
 // scene's lights, X3D's way: diffuse and specular per light, fading with
 // distance and outside a spot's beam. uTexture: 0 none, 1 an RGB(A) image
 // replaces the colour, 2 a grey image modulates it, 3 a glyph's coverage is
-// the alpha (Text).
+// the alpha (Text), 4 a cut's section (CutSection): the image's colour where
+// its filtered material fraction (alpha) is at least ½, nothing elsewhere.
 const char* kFragment = R"(#version 330 core
 in vec3 vWorld;
 in vec3 vNormal;
@@ -87,6 +88,10 @@ void main() {
   } else if (uTexture == 3) {
     alpha *= texture(uImage, vTexCoord).r;
     if (alpha < 0.02) discard;
+  } else if (uTexture == 4) {
+    vec4 texel = texture(uImage, vTexCoord);
+    if (texel.a < 0.5) discard;
+    base = texel.rgb;
   }
   if (uTint != 0 && !gl_FrontFacing) base = base * vec3(0.55, 0.35, 0.32);
   vec3 c = base * uAmbient * uAmbientLight + uEmissive;

@@ -33,7 +33,7 @@ public:
   // that light this draw, bit i for light i (X3D's DirectionalLight scoping).
   void setLights(std::uint32_t mask);
   // After setObject, for a draw with the texture bound to unit 0.
-  enum class TextureMode { None = 0, Replace = 1, Modulate = 2, Coverage = 3 };
+  enum class TextureMode { None = 0, Replace = 1, Modulate = 2, Coverage = 3, Section = 4 };
   void setTexture(TextureMode mode);
 
 private:

@@ -7,7 +7,8 @@ namespace millsim {
 const NodeType& ClipPlane::type() {
   static const NodeType t = makeNodeType<ClipPlane>(
       "ClipPlane", "children", "Rendering",
-      "A cut-plane: clips its siblings and their descendants (not the tool) to one side of a plane.");
+      "A cut-plane: clips its siblings and their descendants (not the tool) to one side of a plane. MillSim "
+      "caps a VolumeObject it cuts with the section, each tissue in its colour (soft tissue such as the pulp too).");
   return t;
 }
 

@@ -8,7 +8,8 @@ namespace millsim {
 // A cut-plane (X3D ClipPlane): hides the geometry on the negative side of the
 // plane a·x + b·y + c·z + d = 0. As in X3D it clips its siblings and their
 // descendants, and the plane is in its parent's coordinate system. MillSim
-// draws the tool unclipped: a cut-plane is for looking into the tooth.
+// draws the tool unclipped: a cut-plane is for looking into the tooth, and a
+// volume it cuts is capped with its section (millsim/graphics/CutSection.h).
 class ClipPlane : public ChildNode {
 public:
   static const NodeType& type();

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <string>
 
+#include "millsim/volume/MeshVolume.h"
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VolumeIO.h"
@@ -15,7 +16,8 @@ namespace millsim {
 namespace {
 
 const char* const kSupported =
-    ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, or phantom:tooth";
+    ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, phantom:tooth, or a surface mesh "
+    "(.stl, .obj, .ply) with the VolumeObject's voxelSize";
 
 // "scheme:" at the start of a url (two or more letters, so that "C:" is not one).
 std::string urlScheme(const std::string& url) {
@@ -48,7 +50,7 @@ bool hasDicomMagic(const fs::path& file) {
 
 }  // namespace
 
-LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue) {
+LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue, const MeshVoxelOptions* mesh) {
   if (url.empty()) throw VolumeError("(empty url): no volume file given (expected " + std::string(kSupported) + ")");
   const std::string scheme = urlScheme(url);
   if (scheme == "phantom") return LoadedVolume{makeToothPhantom(parsePhantomUrl(url)), "phantom", url};
@@ -89,6 +91,23 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   if (ext == ".nrrd" || ext == ".nhdr") return LoadedVolume{readNrrd(path, airValue), "nrrd", name};
   if (ext == ".mha" || ext == ".mhd") return LoadedVolume{readMetaImage(path, airValue), "metaimage", name};
   if (ext == ".vti") return LoadedVolume{readVti(path, airValue), "vti", name};
+  if (isMeshFile(path)) {
+    if (!mesh || !(mesh->voxelSize > 0.0))
+      throw VolumeError(name + ": a surface mesh has no voxels; the VolumeObject's voxelSize says how fine to voxelise "
+                               "it (e.g. voxelSize='0.00005 0.00005 0.00005' for 50 µm)");
+    MeshVolume m = loadMeshVolume(path, *mesh);
+    std::string account = m.format + ", " + std::to_string(m.parts.size()) + (m.parts.size() == 1 ? " part" : " parts");
+    for (std::size_t i = 0; i < m.parts.size(); ++i)
+      account += std::string(i ? ", '" : " ('") + m.parts[i] + "' " + std::to_string(m.triangles[i]) + " triangles" +
+                 (i + 1 == m.parts.size() ? ")" : "");
+    const glm::dvec3 mm = m.size * 1e3;
+    account += ", " + fmt(mesh->unit) + " m per unit of the file (the format carries none, meshUnit says it): " +
+               fmt(mm.x) + " × " + fmt(mm.y) + " × " + fmt(mm.z) + " mm, voxelised at " + fmt(mesh->voxelSize * 1e3) +
+               " mm into " + std::to_string(m.density.dims().x) + " × " + std::to_string(m.density.dims().y) + " × " +
+               std::to_string(m.density.dims().z) + " voxels";
+    LoadedVolume loaded{std::move(m.density), m.format, name, std::move(m.labels), std::move(m.parts), account};
+    return loaded;
+  }
   if (ext == ".dcm" || ext == ".dicom" || (ext.empty() && hasDicomMagic(path)))
     return LoadedVolume{readDicom(path, airValue), "dicom", name};
   throw VolumeError(name + ": unknown volume file extension '" + path.extension().string() + "' (supported: " +

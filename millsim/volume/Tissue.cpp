@@ -16,10 +16,9 @@ void Tissue::initialize(DiagnosticSink& sink) {
   if (name.get().empty()) sink.error(location(), "Tissue has no name (reports and regions refer to tissues by name)");
   if (r.x > r.y)
     sink.error(location(), who + " densityRange " + densityRange.toString() + " is empty; expected min < max");
-  else if (byDensity() == byLabel)
-    sink.error(location(), who + (byLabel ? " has both densityRange " + densityRange.toString() + " and label " +
-                                                std::to_string(label.get()) + "; give one"
-                                          : " has neither densityRange nor label; give one"));
+  else if (byDensity() && byLabel)
+    sink.error(location(), who + " has both densityRange " + densityRange.toString() + " and label " +
+                               std::to_string(label.get()) + "; give one (or neither, for a mesh part of its name)");
 }
 
 }  // namespace millsim

@@ -15,12 +15,12 @@ public:
 
   SFString name{this, "name", Access::InitializeOnly, "", "The tissue's name, as reports and regions refer to it."};
   SFVec2f densityRange{this, "densityRange", Access::InitializeOnly, glm::vec2(0.f),
-                       "[min, max) of the volume's original density that is this tissue; 0 0: chosen by label "
-                       "instead.",
+                       "[min, max) of the volume's original density that is this tissue; 0 0: chosen by label, or "
+                       "by name, instead.",
                        Range::closed(-1e9, 1e9)};
   SFInt32 label{this, "label", Access::InitializeOnly, -1,
-                "Value of the VolumeObject's labelUrl volume that is this tissue; -1: chosen by densityRange "
-                "instead.",
+                "Value of the VolumeObject's labelUrl volume that is this tissue; -1: chosen by densityRange, or "
+                "with neither, by name: the part of a mesh url (an OBJ group, an STL solid) of the tissue's name.",
                 Range::closed(-1, 1 << 20)};
   SFFloat hardness{this, "hardness", Access::InitializeOnly, 1.f,
                    "How hard the tissue is to cut, relative to 1 for the default material: the cutting front "
@@ -37,6 +37,8 @@ public:
 
   // True when the tissue is chosen by densityRange (an empty range means by label).
   bool byDensity() const { return densityRange.get().x < densityRange.get().y; }
+  // Chosen by neither: by its name among a mesh's parts.
+  bool byPartName() const { return !byDensity() && label.get() < 0; }
   void initialize(DiagnosticSink& sink) override;
 };
 

@@ -1,5 +1,6 @@
 #include "millsim/volume/TissueMap.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "millsim/volume/Tissue.h"
@@ -7,13 +8,29 @@
 namespace millsim {
 
 std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std::vector<const Tissue*>& tissues,
-                                            const VoxelVolume* labelVolume, float isoValue) {
+                                            const VoxelVolume* labelVolume, float isoValue,
+                                            const std::vector<std::string>& parts) {
   auto map = std::make_unique<TissueMap>();
   map->entries_.push_back(Entry{"(unclassified material)", 1.f, glm::vec3(0.85f, 0.8f, 0.7f)});
   bool needLabels = false;
+  // Each tissue's label: its own, or its part's (by name); -1 by density.
+  std::vector<long> labelOf;
   for (const Tissue* t : tissues) {
     map->entries_.push_back(Entry{t->name.get(), t->hardness.get(), t->color.get().rgb, t->soft.get()});
-    needLabels |= !t->byDensity() && t->label.get() >= 0;
+    needLabels |= !t->byDensity();
+    long label = t->byDensity() ? -1 : t->label.get();
+    if (t->byPartName()) {
+      const auto it = std::find(parts.begin(), parts.end(), t->name.get());
+      if (it == parts.end()) {
+        std::string known;
+        for (const std::string& p : parts) known += (known.empty() ? "" : ", ") + ("'" + p + "'");
+        throw VolumeError("Tissue '" + t->name.get() + "' has neither densityRange nor label, and " +
+                          (parts.empty() ? std::string("the volume is not a mesh with parts to choose by name; give one")
+                                         : "the mesh has no part of that name (its parts: " + known + ")"));
+      }
+      label = long(it - parts.begin()) + 1;
+    }
+    labelOf.push_back(label);
   }
   if (needLabels && !labelVolume)
     throw VolumeError("a Tissue is chosen by label, but the VolumeObject has no labelUrl volume");
@@ -27,6 +44,7 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
   for (const Entry& e : map->entries_) map->hardness_.push_back(e.hardness);
   map->counts_.assign(map->entries_.size(), 0);
   map->below_.assign(map->entries_.size(), 0);
+  std::vector<double> belowSum(map->entries_.size(), 0.0);
 
   // Same topology as the densities: every material voxel gets a label, air
   // stays background. Walked serially (a few ms for a tooth), so the result
@@ -45,14 +63,20 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
       for (std::size_t t = 0; t < tissues.size() && entry == 0; ++t) {
         const Tissue& ts = *tissues[t];
         const glm::vec2 r = ts.densityRange.get();
-        const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : ts.label.get() >= 0 && std::lround(l) == ts.label.get();
+        const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : labelOf[t] >= 0 && std::lround(l) == labelOf[t];
         if (match) entry = int(t) + 1;
       }
       v.setValue(entry);
       ++map->counts_[std::size_t(entry)];
-      map->below_[std::size_t(entry)] += d < isoValue;
+      if (d < isoValue) {
+        ++map->below_[std::size_t(entry)];
+        belowSum[std::size_t(entry)] += d;
+      }
     }
   }
+  for (std::size_t e = 0; e < map->entries_.size(); ++e)
+    map->entries_[e].densityBelowSurface =
+        map->below_[e] > 0 ? float(belowSum[e] / double(map->below_[e])) : std::numeric_limits<float>::quiet_NaN();
   for (std::size_t e = 1; e < map->entries_.size(); ++e)
     map->entries_[e].soft |= map->counts_[e] > 0 && 2 * map->below_[e] > map->counts_[e];
   // Whole leaves of one tissue (the inside of the dentin) become tiles.

@@ -30,16 +30,23 @@ public:
     // Below the surface: marked Tissue::soft, or most of its voxels below
     // the isoValue (the burr enters it, graphics draws it where exposed).
     bool soft = false;
+    // The mean original density of its voxels below the isoValue (NaN when
+    // none are): how much of a soft tissue's voxel milling has left, for a
+    // cut plane's section, which draws soft tissue too.
+    float densityBelowSurface = std::numeric_limits<float>::quiet_NaN();
   };
 
   // Classifies every material voxel of `volume`: the first tissue that
   // matches wins — by its densityRange on `volume`, or by its label on
   // `labels` (which must have the volume's dimensions; may be null when no
   // tissue is chosen by label). A voxel below `isoValue` counts as below the
-  // surface (belowSurfaceCounts, Entry::soft). Throws VolumeError naming the problem.
+  // surface (belowSurfaceCounts, Entry::soft). A tissue with neither a
+  // densityRange nor a label is the part of its name in `parts` (a mesh's,
+  // part i being label i + 1). Throws VolumeError naming the problem.
   static std::unique_ptr<TissueMap> build(const VoxelVolume& volume, const std::vector<const Tissue*>& tissues,
                                           const VoxelVolume* labels,
-                                          float isoValue = -std::numeric_limits<float>::infinity());
+                                          float isoValue = -std::numeric_limits<float>::infinity(),
+                                          const std::vector<std::string>& parts = {});
 
   const LabelGrid& labels() const { return *labels_; }
   // Entry 0 is the default material (hardness 1); tissue i is entry i + 1.

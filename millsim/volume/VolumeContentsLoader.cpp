@@ -9,6 +9,8 @@
 #include <new>
 #include <vector>
 
+#include "millsim/volume/MeshFile.h"
+#include "millsim/volume/MeshVolume.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/Tissue.h"
 #include "millsim/volume/TissueMap.h"
@@ -27,6 +29,11 @@ class VoxelContents final : public VolumeContents {
 public:
   VoxelContents(VoxelVolume volume, std::string format, float isoValue)
       : volume_(std::move(volume)), format_(std::move(format)), isoValue_(isoValue) {}
+  // A mesh's parts, as labels the Tissues choose by name (or label).
+  void setParts(VoxelVolume labels, std::vector<std::string> parts) {
+    partLabels_ = std::make_unique<VoxelVolume>(std::move(labels));
+    parts_ = std::move(parts);
+  }
   VoxelVolume& voxels() override { return volume_; }
   const VoxelVolume& voxels() const override { return volume_; }
   const std::string& format() const override { return format_; }
@@ -48,6 +55,8 @@ private:
   float isoValue_;
   std::map<int, std::unique_ptr<PointShell>> shells_;
   std::unique_ptr<TissueMap> tissueMap_;
+  std::unique_ptr<VoxelVolume> partLabels_;
+  std::vector<std::string> parts_;
 };
 
 void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesystem::path& base, DiagnosticSink& sink) {
@@ -75,8 +84,22 @@ void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesys
     sink.error(node.location(), "VolumeObject could not load any of its labelUrl volumes:" + failures);
     return;
   }
+  // A mesh's own parts label it unless a labelUrl is given.
+  if (!labels && partLabels_) labels = std::move(partLabels_);
+  // A tissue by name needs a mesh part of its name: said at the tissue.
+  bool unnamed = false;
+  for (const Tissue* t : list) {
+    if (!t->byPartName() || std::find(parts_.begin(), parts_.end(), t->name.get()) != parts_.end()) continue;
+    std::string known;
+    for (const std::string& p : parts_) known += (known.empty() ? "" : ", ") + ("'" + p + "'");
+    sink.error(t->location(), "Tissue '" + t->name.get() + "' has neither densityRange nor label, and " +
+                                  (parts_.empty() ? std::string("the volume is not a mesh with parts to choose it by name; give one")
+                                                  : "the mesh has no part of that name (its parts: " + known + ")"));
+    unnamed = true;
+  }
+  if (unnamed) return;
   try {
-    tissueMap_ = TissueMap::build(volume_, list, labels.get(), isoValue_);
+    tissueMap_ = TissueMap::build(volume_, list, labels.get(), isoValue_, parts_);
   } catch (const VolumeError& e) {
     sink.error(node.location(), std::string("VolumeObject tissues: ") + e.what());
     return;
@@ -106,16 +129,32 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
                                         "takes the file's)");
         return nullptr;
       }
+  // A mesh is voxelised at voxelSize (cubic), its soft parts below the isoValue.
+  MeshVoxelOptions mesh;
+  mesh.voxelSize = override.x == override.y && override.y == override.z ? override.x : -1.0;
+  mesh.unit = node.meshUnit.get();
+  mesh.isoValue = node.isoValue.get(), mesh.airValue = node.airValue.get();
+  for (const auto& t : node.tissues.get())
+    if (t->soft.get() && t->byPartName()) mesh.softParts.insert(t->name.get());
+    else if (t->soft.get() && !t->byDensity()) mesh.softLabels.insert(t->label.get());
   std::string failures;
   std::vector<std::string> failed;
   for (const std::string& u : node.url.get()) {
     try {
-      LoadedVolume loaded = loadVolume(u, base, node.airValue.get());
+      if (mesh.voxelSize < 0.0 && isMeshFile(u))
+        throw VolumeError(u + ": a mesh is voxelised in cubic voxels; give voxelSize the same along x, y and z (it is " +
+                          node.voxelSize.toString() + ")");
+      LoadedVolume loaded = loadVolume(u, base, node.airValue.get(), &mesh);
+      const bool isMesh = loaded.labels.has_value();
       auto contents = std::make_unique<VoxelContents>(
-          override != glm::dvec3(0.0)
+          override != glm::dvec3(0.0) && !isMesh
               ? VoxelVolume(loaded.volume.gridPtr(), loaded.volume.dims(), override, node.airValue.get())
               : std::move(loaded.volume),
           loaded.format, node.isoValue.get());
+      if (isMesh) {
+        contents->setParts(std::move(*loaded.labels), loaded.parts);
+        sink.note(node.location(), "VolumeObject " + u + ": " + loaded.account);
+      }
       node.loadedUrl.set(u);
       // A fallback url loaded: say why each earlier one did not.
       for (const std::string& f : failed)

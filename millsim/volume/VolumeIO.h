@@ -4,23 +4,34 @@
 // all supported formats and are converted), or throws VolumeError naming the
 // file and the problem. Readers check sizes before allocating.
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
 
+struct MeshVoxelOptions;
+
 struct LoadedVolume {
   VoxelVolume volume;
-  std::string format;  // "vdb", "nrrd", "metaimage", "vti", "dicom", "phantom"
+  std::string format;  // "vdb", "nrrd", "metaimage", "vti", "dicom", "phantom", "STL", "binary STL", "OBJ", "PLY"
   std::string source;  // the file, folder or phantom url that was read
+  // A surface mesh's parts as labels (part i is label i + 1) and their names; a short account of what was voxelised.
+  std::optional<VoxelVolume> labels = std::nullopt;
+  std::vector<std::string> parts = {};
+  std::string account = {};
 };
 
 // Dispatches on the url: "phantom:tooth[?options]" (see ToothPhantom.h), a
 // folder (DICOM series), or a file by extension: .vdb, .nrrd/.nhdr, .mha/.mhd,
-// .vti, .dcm. Relative paths are resolved against baseDir. Density values at
+// .vti, .dcm; a surface mesh (.stl, .obj, .ply), voxelised with `mesh`'s
+// options (MeshVolume.h; without them a mesh is an error saying a voxel size
+// is needed). Relative paths are resolved against baseDir. Density values at
 // or below airValue become air (the sparse background).
-LoadedVolume loadVolume(const std::string& url, const std::filesystem::path& baseDir, float airValue);
+LoadedVolume loadVolume(const std::string& url, const std::filesystem::path& baseDir, float airValue,
+                        const MeshVoxelOptions* mesh = nullptr);
 
 VoxelVolume readVdb(const std::filesystem::path& file, float airValue);
 VoxelVolume readNrrd(const std::filesystem::path& file, float airValue);       // .nrrd, .nhdr; raw or gzip

@@ -26,15 +26,21 @@ public:
 
   MFString url{this, "url", Access::InitializeOnly, {"phantom:tooth"},
                "Volume sources, first loadable wins: a .vdb, .nrrd/.nhdr, .mha/.mhd, .vti or .dcm file, a folder "
-               "of DICOM slices, or phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1] (in an X3D file each & is written "
-               "&amp;). Every density must be a finite number."};
+               "of DICOM slices, phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1] (in an X3D file each & is written "
+               "&amp;), or a closed surface mesh (.stl, .obj, .ply: its parts, an OBJ's groups or an STL's solids, "
+               "become labels Tissues name) voxelised at voxelSize. Every density must be a finite number."};
   SFFloat isoValue{this, "isoValue", Access::InitializeOnly, 700.f,
                    "Density above which a point is inside the object (Hounsfield-like units).", Range::closed(-1e9, 1e9)};
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,
                    "Density of air; values at or below it are stored as the sparse background.", Range::closed(-1e9, 1e9)};
   SFVec3f voxelSize{this, "voxelSize", Access::InitializeOnly, glm::vec3(0.f),
-                    "Voxel size (m), each 1 µm to 10 mm; 0 0 0 takes it from the file (millimetres there).",
+                    "Voxel size (m), each 1 µm to 10 mm; 0 0 0 takes it from the file (millimetres there). A mesh "
+                    "url needs it, the same along x, y and z.",
                     Range::closed(0, kMaxVoxelSize).in(quantity::length)};
+  SFFloat meshUnit{this, "meshUnit", Access::InitializeOnly, 1.f,
+                   "The length one unit of a mesh url's coordinates stands for (m): STL, OBJ and PLY carry no unit. "
+                   "0.001 for a mesh in millimetres, as dental scanners write them.",
+                   Range::closed(1e-9, 1e3).in(quantity::length)};
   MFNodeOf<Tissue> tissues{this, "tissues", Access::InitializeOnly,
                            "The volume's materials (Tissue nodes): the first that matches a voxel is its tissue; "
                            "material no tissue matches is cut with hardness 1."};

@@ -37,7 +37,7 @@ void drawHelpLine(const HudExtras& extras) {
                                     : "drag turn · Shift+drag or middle-drag pan · wheel zoom · ";
   std::string help = keys + "|  " + view +
                      "PgUp/PgDn viewpoint · F frame all · C cut · F1-F6 toggle cut · Tab next cut · Ctrl+drag move "
-                     "cut · E force on/off · M millable on/off · B burr shape · H HUD · Esc quit";
+                     "cut · K cut caps · E force on/off · M millable on/off · B burr shape · H HUD · Esc quit";
   if (extras.pointer)
     help += "  |  mouse tool: move = burr · left/Space = mill · right-drag turn tool · Ctrl+wheel depth";
   const ImVec2 size = ImGui::GetIO().DisplaySize;
@@ -53,13 +53,14 @@ void drawHelpLine(const HudExtras& extras) {
   ImGui::End();
 }
 
-bool drawCutPanel(std::vector<CutPlane>& planes, int& active, const glm::dvec3& centre, double size) {
+bool drawCutPanel(std::vector<CutPlane>& planes, int& active, const glm::dvec3& centre, double size, bool& capped) {
   if (planes.empty()) return false;
   bool changed = false;
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 10, 10), ImGuiCond_Always, ImVec2(1.f, 0.f));
   ImGui::SetNextWindowBgAlpha(0.55f);
   if (ImGui::Begin("Cut planes", nullptr,
                    ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove)) {
+    changed |= ImGui::Checkbox("capped by tissue (K)", &capped);
     for (std::size_t i = 0; i < planes.size(); ++i) {
       CutPlane& c = planes[i];
       ImGui::PushID(int(i));

@@ -19,7 +19,8 @@ struct HudExtras {
 void drawHud(const HudState& hud, const HudExtras& extras);
 // The keys, wrapped along the bottom of the window.
 void drawHelpLine(const HudExtras& extras);
-// Sliders for each cut plane; returns true if the user changed one.
-bool drawCutPanel(std::vector<CutPlane>& planes, int& active, const glm::dvec3& centre, double size);
+// Sliders for each cut plane, and whether cuts are capped by their section;
+// returns true if the user changed one.
+bool drawCutPanel(std::vector<CutPlane>& planes, int& active, const glm::dvec3& centre, double size, bool& capped);
 
 }  // namespace millsim

@@ -198,7 +198,9 @@ private:
       drawHud(hud, extras);
       drawHelpLine(extras);
       const SceneView& sv = drawer_->scene();
-      drawCutPanel(drawer_->cutPlanes(), activeCut_, sv.centre(), 0.5 * glm::length(sv.boundsMax - sv.boundsMin));
+      bool capped = drawer_->capCuts();
+      drawCutPanel(drawer_->cutPlanes(), activeCut_, sv.centre(), 0.5 * glm::length(sv.boundsMax - sv.boundsMin), capped);
+      drawer_->setCapCuts(capped);
     }
     ImGui::Render();
     glViewport(0, 0, width_, height_);
@@ -289,6 +291,7 @@ private:
       case SDLK_TAB:
         if (!drawer_->cutPlanes().empty()) activeCut_ = (activeCut_ + 1) % int(drawer_->cutPlanes().size());
         break;
+      case SDLK_k: drawer_->setCapCuts(!drawer_->capCuts()); break;
       case SDLK_SPACE: spaceMilling_ = !spaceMilling_; break;
       case SDLK_e: commands_.push_back(command(WindowCommand::Kind::ToggleEnabled)); break;
       case SDLK_m: commands_.push_back(command(WindowCommand::Kind::ToggleMillable)); break;

@@ -45,6 +45,11 @@ std::optional<Access> accessFromName(std::string_view name) {
 
 bool isNodeType(FieldType t) { return t == FieldType::SFNode || t == FieldType::MFNode; }
 
+bool isNullNodeValue(std::string_view text) {
+  const std::size_t b = text.find_first_not_of(" \t\r\n"), e = text.find_last_not_of(" \t\r\n");
+  return b != std::string_view::npos && text.substr(b, e - b + 1) == "NULL";
+}
+
 namespace {
 template <class T>
 void parseAs(FieldType t, std::string_view text) {
@@ -178,6 +183,9 @@ std::vector<ProtoFieldDecl> readProtoFields(Document& doc, const xmlNode* parent
       continue;
     }
     const xmlAttr* value = findAttr(c, "value");
+    // value="NULL" on a node field is the ClassicVRML spelling of "no node",
+    // which X3D editors write into XML too: it means what no value means.
+    if (value && isNodeType(f.type) && isNullNodeValue(doc.value(value))) value = nullptr;
     const bool hasNodes = [&] {
       for (const xmlNode* k = c->children; k; k = k->next)  // metadata about the field changes nothing
         if (k->type == XML_ELEMENT_NODE && nameOf(k).rfind("Metadata", 0) != 0) return true;
@@ -284,10 +292,10 @@ std::optional<ExternProtoDecl> readExternProtoDeclare(Document& doc, const xmlNo
   } catch (const ValueError&) {
     ext.urls = {urlText};  // one unquoted url, as H3DAPI files write it
   }
-  if (ext.urls.empty()) {
-    sink.error(doc.locateAttr(tag, "url", loc), "ExternProtoDeclare '" + ext.name + "' has an empty url");
-    return std::nullopt;
-  }
+  std::erase_if(ext.urls, [](const std::string& u) { return u.find_first_not_of(" \t\r\n") == std::string::npos; });
+  if (ext.urls.empty())  // browsers declare it and skip its instances: so does ProtoReader::readExtern
+    sink.warning(doc.locateAttr(tag, "url", loc),
+                 "ExternProtoDeclare '" + ext.name + "' has an empty url: there is no proto to load, and its instances are skipped");
   const std::size_t before = sink.errorCount();
   ext.fields = readProtoFields(doc, el, ext.name, false, sink);
   if (sink.errorCount() != before) return std::nullopt;

@@ -36,6 +36,7 @@ struct ProtoDecl {
   std::vector<ProtoFieldDecl> fields;
   const xmlNode* body = nullptr;      // <ProtoBody>
   std::size_t bodyElements = 0;       // elements inside it: what one instance costs to expand
+  bool unavailable = false;           // an ExternProtoDeclare with an empty url: its instances are skipped
   Document* doc = nullptr;            // the file that declares it (its text, tree and folder)
   // The protos its body may instantiate: the scope that declares it. Weak, as
   // that scope holds this declaration (a shared one leaked the pair); the
@@ -64,6 +65,8 @@ std::optional<std::string> invalidValue(FieldType type, std::string_view text);
 // May an inner field of access `inner` be IS-connected to an interface field of access `iface`?
 bool canConnect(Access iface, Access inner);
 bool isNodeType(FieldType t);
+// "NULL" (white space around it allowed): an SFNode or MFNode value that holds no node.
+bool isNullNodeValue(std::string_view text);
 
 // Reads the <field> children of a ProtoInterface or ExternProtoDeclare;
 // `owner` names the proto in messages. Bad fields are reported and left out.

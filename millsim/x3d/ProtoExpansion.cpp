@@ -50,7 +50,8 @@ InstanceField* ProtoInstanceInterface::setValue(const std::string& name, const s
     return nullptr;
   }
   if (isNodeType(d.type)) {
-    if (value) {
+    // value="NULL": no node, as ClassicVRML writes it (and X3D editors in XML).
+    if (value && !isNullNodeValue(*value)) {
       sink.error(valueAt, "fieldValue: field '" + name + "' of proto '" + proto_->name + "' is " +
                               std::string(fieldTypeName(d.type)) + ": give its nodes as child elements, not a value");
       return nullptr;

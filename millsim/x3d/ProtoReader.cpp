@@ -38,6 +38,12 @@ void ProtoReader::readExtern(Document& doc, xmlNode* el) {
   auto ext = readExternProtoDeclare(doc, el, sink_);
   if (!ext) return;
   const SourceLocation& loc = ext->where;
+  if (ext->urls.empty()) {  // warned: its instances are skipped
+    auto decl = std::make_shared<ProtoDecl>();
+    decl->name = ext->name, decl->where = loc, decl->fields = ext->fields, decl->unavailable = true;
+    declare(ext->name, decl, loc);
+    return;
+  }
   if (!allowFileAccess_) {
     sink_.error(loc, "ExternProtoDeclare '" + ext->name + "' is disabled for this load (no file access)");
     return;
@@ -204,6 +210,13 @@ std::shared_ptr<Node> ProtoReader::readInstance(Document& doc, xmlNode* el, std:
     sink_.error(doc.locateAttr(tag, "name", loc),
                 "ProtoInstance of '" + name + "': no ProtoDeclare or ExternProtoDeclare of that name before it" +
                     didYouMean(closestNames(name, scope_->names())));
+    return nullptr;
+  }
+  if (decl->unavailable) {
+    sink_.warning(loc, "ProtoInstance of '" + name + "' skipped: its ExternProtoDeclare (" + decl->where.str() +
+                           ") has an empty url");
+    if (const xmlAttr* def = findAttr(el, "DEF"))
+      doc.skippedDefs[doc.value(def)] = "is a ProtoInstance of '" + name + "', whose ExternProtoDeclare has an empty url";
     return nullptr;
   }
   const std::size_t errorsBefore = sink_.errorCount();

@@ -177,9 +177,74 @@ private:
   void readSceneChildren(Document& doc, xmlNode* scene, MFNodeOf<ChildNode>& target) {
     std::vector<const Node*> ancestors;
     forEachChild(doc, scene, "Scene", [&](xmlNode* child) {
-      if (nameOf(child) == "ROUTE") readRoute(doc, child);
+      const std::string_view n = nameOf(child);
+      if (n == "ROUTE") readRoute(doc, child);
+      else if (n == "EXPORT") readExport(doc, child);
+      else if (n == "IMPORT") readImport(doc, child);
       else if (!protos_.readStatement(doc, child)) readAndAttach(doc, child, target, "Scene", ancestors);
     });
+  }
+
+  // EXPORT localDEF [AS]: a node of this file an Inline's importer may name.
+  void readExport(Document& doc, xmlNode* el) {
+    std::size_t tag;
+    const SourceLocation loc = locate(doc, el, &tag);
+    const xmlAttr* local = findAttr(el, "localDEF");
+    const xmlAttr* as = findAttr(el, "AS");
+    if (!local) {
+      sink_.error(loc, "EXPORT needs a localDEF: the DEF name of the node it exports");
+      return;
+    }
+    const std::string name = attrValue(doc.xml, local);
+    const std::string exported = as && !attrValue(doc.xml, as).empty() ? attrValue(doc.xml, as) : name;
+    if (auto it = doc.defs->find(name); it != doc.defs->end()) {
+      doc.exports[exported] = it->second;
+    } else if (auto skipped = doc.skippedDefs.find(name); skipped != doc.skippedDefs.end()) {
+      doc.exports[exported] = nullptr;  // an importer skips it too, with a warning
+    } else {
+      sink_.error(locateAttr(doc, tag, "localDEF", loc), "EXPORT localDEF '" + name + "' names no DEF before it");
+    }
+  }
+
+  // IMPORT inlineDEF importedDEF [AS]: an Inline's exported node under a
+  // name of this file, for ROUTEs. One the Inline does not export (or whose
+  // Inline was not loaded) is skipped with a warning, as browsers do, and so
+  // are the ROUTEs that name it.
+  void readImport(Document& doc, xmlNode* el) {
+    std::size_t tag;
+    const SourceLocation loc = locate(doc, el, &tag);
+    const xmlAttr* inlineAttr = findAttr(el, "inlineDEF");
+    const xmlAttr* importedAttr = findAttr(el, "importedDEF");
+    const xmlAttr* as = findAttr(el, "AS");
+    if (!inlineAttr || !importedAttr) {
+      sink_.error(loc, "IMPORT needs an inlineDEF (the Inline's DEF name) and an importedDEF (the name it EXPORTs)");
+      return;
+    }
+    const std::string inlineName = attrValue(doc.xml, inlineAttr), imported = attrValue(doc.xml, importedAttr);
+    const std::string name = as && !attrValue(doc.xml, as).empty() ? attrValue(doc.xml, as) : imported;
+    const auto it = doc.defs->find(inlineName);
+    const auto* inl = it == doc.defs->end() ? nullptr : dynamic_cast<const Inline*>(it->second.get());
+    if (!inl) {
+      sink_.error(locateAttr(doc, tag, "inlineDEF", loc),
+                  "IMPORT inlineDEF '" + inlineName + "' " +
+                      (it == doc.defs->end() ? "names no DEF before it" : "is a " + it->second->typeName() + ", not an Inline"));
+      return;
+    }
+    const auto& exports = inlineExports_[inl];
+    const auto e = exports.find(imported);
+    if (e == exports.end() || !e->second) {
+      std::string known;
+      for (const auto& [k, n] : exports) known += (known.empty() ? "" : ", ") + ("'" + k + "'");
+      sink_.warning(locateAttr(doc, tag, "importedDEF", loc),
+                    "IMPORT of '" + imported + "' from Inline '" + inlineName + "' ignored: " +
+                        (!inl->load.get() ? std::string("the Inline is not loaded (load FALSE)")
+                         : e != exports.end() ? "the node it exports is one MillSim skipped"
+                         : known.empty()      ? std::string("its file EXPORTs nothing")
+                                              : "its file EXPORTs only " + known));
+      doc.skippedDefs[name] = "could not be IMPORTed from Inline '" + inlineName + "'";
+      return;
+    }
+    (*doc.defs)[name] = e->second;
   }
 
   // H3DLoad reads a file whose root is <Scene> or a node (<Group>,
@@ -438,7 +503,8 @@ private:
     if (el->type != XML_ELEMENT_NODE) return;
     if (const xmlAttr* def = findAttr(el, "DEF")) {
       const std::string name = attrValue(doc.xml, def);
-      if (!name.empty() && !doc.defs->count(name)) doc.skippedDefs[name] = std::string(nameOf(el));
+      if (!name.empty() && !doc.defs->count(name))
+        doc.skippedDefs[name] = "is a " + std::string(nameOf(el)) + ", which MillSim does not support";
     }
     for (xmlNode* c = el->children; c; c = c->next) skipSubtree(doc, c);
   }
@@ -482,6 +548,13 @@ private:
     auto it = doc.defs->find(name);
     if (it == doc.defs->end() && doc.skippedDefs.count(name)) return nullptr;  // its DEF was skipped, with a warning
     if (it == doc.defs->end()) {
+      // X3D needs the DEF first; browsers skip a USE that comes before it with a warning.
+      if (const xmlNode* later = laterDef(xmlDocGetRootElement(doc.xml), name)) {
+        sink_.warning(locateAttr(doc, tag, "USE", loc),
+                      "USE '" + name + "' comes before its DEF (line " + std::to_string(xmlGetLineNo(later)) +
+                          "); X3D needs the DEF first, so this USE is skipped");
+        return nullptr;
+      }
       std::vector<std::string> names;
       for (const auto& [k, v] : *doc.defs) names.push_back(k);
       sink_.error(locateAttr(doc, tag, "USE", loc), "USE '" + name + "' names no DEF earlier in this file" +
@@ -501,6 +574,18 @@ private:
     return it->second;
   }
 
+  // The element under `el` (in document order) whose DEF is `name`, or null.
+  static const xmlNode* laterDef(const xmlNode* el, const std::string& name) {
+    for (; el; el = el->next) {
+      if (el->type != XML_ELEMENT_NODE) continue;
+      if (const xmlAttr* def = findAttr(el, "DEF"); def && def->children && def->children->content &&
+                                                    name == reinterpret_cast<const char*>(def->children->content))
+        return el;
+      if (const xmlNode* inner = laterDef(el->children, name)) return inner;
+    }
+    return nullptr;
+  }
+
   void readFields(Document& doc, xmlNode* el, Node& node, std::size_t tag, const SourceLocation& loc) {
     for (const xmlAttr* a = el->properties; a && !sink_.full(); a = a->next) {
       if (a->ns) continue;  // namespaced attributes (xmlns:*, xsd:*) carry no field
@@ -513,7 +598,17 @@ private:
         std::vector<std::string> names;
         for (Field* nf : node.fields())
           if (settableInFile(nf->access()) && !nf->isNodeField()) names.emplace_back(nf->name());
-        sink_.error(at, "unknown field '" + std::string(n) + "' of " + node.typeName() + didYouMean(closestNames(n, names)));
+        // A standard node's field no X3D version has is a browser's own
+        // extension (Castle's Shape.shading, X_ITE's): browsers ignore what
+        // they do not know, with a warning; so does MillSim (--strict: an
+        // error). MillSim's own nodes stay strict: a misspelt tipRadius must
+        // not pass.
+        const std::string what = "unknown field '" + std::string(n) + "' of " + node.typeName();
+        if (findStandardNode(node.typeName()))
+          sink_.warning(at, what + " (no X3D version has it; another browser's extension?); ignored" +
+                                didYouMean(closestNames(n, names)));
+        else
+          sink_.error(at, what + didYouMean(closestNames(n, names)));
         continue;
       }
       if (!settableInFile(f->access())) {
@@ -623,8 +718,8 @@ private:
       auto it = doc.defs->find(v[2 * i]);
       if (auto skipped = doc.skippedDefs.find(v[2 * i]); it == doc.defs->end() && skipped != doc.skippedDefs.end()) {
         sink_.warning(locateAttr(doc, tag, names[2 * i], loc),
-                      "ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + " ignored: '" + v[2 * i] +
-                          "' is a " + skipped->second + ", which MillSim does not support");
+                      "ROUTE " + v[0] + "." + v[1] + " TO " + v[2] + "." + v[3] + " ignored: '" + v[2 * i] + "' " +
+                          skipped->second);
         return;
       }
       if (it == doc.defs->end()) {
@@ -717,6 +812,7 @@ private:
         if (parseXml(sub)) readTopLevel(sub, inl.loaded, false);
       }
       inlineStack_.pop_back();
+      inlineExports_[&inl] = std::move(sub.exports);  // what an IMPORT of the including file may name
       return;
     }
     sink_.error(loc, "Inline could not load any of its urls:" + tried);
@@ -771,6 +867,8 @@ private:
   std::vector<fs::path> inlineStack_;
   static constexpr int kWarningsPerUnsupportedType = 10;
   std::map<std::string, int> unsupportedSeen_;  // warnings given per unsupported type
+  // Each loaded Inline's EXPORTs, for the IMPORT statements of the file that includes it.
+  std::map<const Inline*, std::map<std::string, std::shared_ptr<Node>, std::less<>>> inlineExports_;
   ProtoReader protos_;  // prototypes: declarations, expansion, routes to instances
 
   // ---- ProtoHost: what the proto reader asks of the loader ---------------------

@@ -39,8 +39,11 @@ struct Document {
   xmlDocPtr xml = nullptr;
   std::filesystem::path dir;
   DefMap* defs;  // an Inline's and a ProtoInstance's DEF names are private to it, as X3D specifies
-  // DEF name -> type of nodes skipped as unsupported: a USE or ROUTE of one is skipped too.
+  // DEF name -> why its node was skipped ("is a ProximitySensor, which MillSim
+  // does not support"): a USE or ROUTE of one is skipped too, saying so.
   std::map<std::string, std::string, std::less<>> skippedDefs;
+  // Its EXPORT statements: the name an importer uses -> the node (X3D 4.0 §4.4.6).
+  std::map<std::string, std::shared_ptr<Node>, std::less<>> exports;
   // Where each element's start tag begins, once found. A ProtoBody is read
   // once per instance, after the source cursor has passed it, so its tags
   // are found when its ProtoDeclare is read (see locateSubtree).

@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include "millsim/graphics/SceneView.h"
+#include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VolumeSampler.h"
 
 namespace millsim::test {
@@ -32,7 +33,9 @@ inline std::pair<glm::dvec3, glm::dvec3> pixelRay(const Camera& c, int x, int y)
 
 // First point along the ray where it crosses the iso-surface, to within 1 µm,
 // as the renderer draws it: only where the volume's clip planes keep it, and
-// without a surface on the cut itself (the iso-surface mesh is open there).
+// on a cut where it enters material there (the drawer caps the cut with its
+// section: what the iso-surface encloses, and a soft tissue below it, here
+// where the nearest voxel's tissue is soft and over half its density is left).
 inline std::optional<glm::dvec3> firstSurface(const DrawVolume& v, const glm::dvec3& from, const glm::dvec3& dir,
                                               double maxDistance) {
   const VolumeSampler sampler(*v.voxels);
@@ -46,12 +49,29 @@ inline std::optional<glm::dvec3> firstSurface(const DrawVolume& v, const glm::dv
     const glm::dvec3 local(worldToLocal * glm::dvec4(from + t * dir, 1.0));
     return sampler.density(v.voxels->localToIndex(local)) >= v.iso;
   };
+  auto onCap = [&](double t) {
+    if (inside(t)) return true;
+    if (!v.tissues) return false;
+    const glm::dvec3 local(worldToLocal * glm::dvec4(from + t * dir, 1.0));
+    const glm::dvec3 index = v.voxels->localToIndex(local);
+    const glm::ivec3 c(glm::round(index));
+    const int label = v.tissues->labelAt(c.x, c.y, c.z);
+    if (label <= 0 || !v.tissues->soft(label)) return false;
+    const double air = v.voxels->airValue(), original = v.tissues->entries()[std::size_t(label)].densityBelowSurface;
+    return sampler.density(index) > 0.5 * (air + original);
+  };
   const double step = 0.2 * v.voxels->voxelSize().x;
-  bool started = false, was = false;
+  bool started = false, was = false, cutBefore = false;
   for (double t = 0.0; t < maxDistance; t += step) {
     if (!kept(t)) {
       started = false;
+      cutBefore = true;
       continue;
+    }
+    if (!started && cutBefore && onCap(t)) {  // entering the kept side through the cap
+      double lo = t - step, hi = t;
+      while (hi - lo > 1e-6) (kept(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+      return from + hi * dir;
     }
     const bool now = inside(t);
     if (started && now != was) {

@@ -121,9 +121,18 @@ TEST(Loader, ErrorsNameFileLineColumnValueAndExpectation) {
 TEST(Loader, UnknownNamesGetSuggestions) {
   auto r = load(x3d(R"(<Tranform/>)"));
   EXPECT_NE(firstError(r).message.find("unknown node type 'Tranform'; did you mean 'Transform'?"), std::string::npos);
+  // A standard node's unknown field is a warning (browsers ignore it), still with the suggestion ...
   auto f = load(x3d(R"(<Transform translaton="0 0 0"/>)"));
-  EXPECT_NE(firstError(f).message.find("did you mean 'translation'?"), std::string::npos);
-  EXPECT_EQ(firstError(f).where.column, 12);
+  ASSERT_TRUE(f.ok()) << f.report();
+  ASSERT_EQ(f.diagnostics.size(), 1u) << f.report();
+  EXPECT_EQ(f.diagnostics[0].severity, Severity::Warning);
+  EXPECT_NE(f.diagnostics[0].message.find("did you mean 'translation'?"), std::string::npos);
+  EXPECT_EQ(f.diagnostics[0].where.column, 12);
+  // ... and a MillSim node's is an error: a misspelt tipRadius must not pass.
+  auto m = load(x3d(R"(<HandDevice><MillTool tipRadus="0.001"/></HandDevice>)"));
+  ASSERT_FALSE(m.ok());
+  EXPECT_NE(firstError(m).message.find("unknown field 'tipRadus' of MillTool; did you mean 'tipRadius'?"), std::string::npos)
+      << firstError(m).message;
 }
 
 TEST(Loader, UnsupportedStandardNodesWarnAtMostTenTimesPerType) {

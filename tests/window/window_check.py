@@ -7,6 +7,7 @@
   window_check.py real-ct MILLSIM SCENE OUTDIR
   window_check.py stall MILLSIM SCENE OUTDIR
   window_check.py key-sensor MILLSIM SCENE OUTDIR
+  window_check.py cut-caps MILLSIM SCENE OUTDIR
 
 Each starts `millsim run` with a window, drives it with xdotool as a person
 would, and checks what the window showed (captured with ImageMagick's
@@ -260,15 +261,41 @@ def key_sensor(millsim, scene, out):
     finish(proc)
 
 
+def dentin_fraction(img):
+    # The dentin's colour (0.93 0.82 0.55), lit from the front: yellow, blue well under green.
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    return float(np.mean((r > 0.7) & (g > 0.6) & (b < g - 0.15)))
+
+
+def cut_caps(millsim, scene, out):
+    # x3d/lessons/cut-plane.x3d: the cut through the tooth is capped by its
+    # section, the dentin in its colour; K shows the uncapped inside instead, and back.
+    proc, window, log = start(millsim, scene, out, "--duration", "8")
+    capped = capture(window, os.path.join(out, "capped.png"))
+    check(dentin_fraction(capped) > 0.01, f"the cut shows the dentin's section ({dentin_fraction(capped):.3f} of the window)")
+    xdo("key", "--window", window, "k")
+    time.sleep(1.0)
+    open_cut = capture(window, os.path.join(out, "uncapped.png"))
+    check(dentin_fraction(open_cut) < 0.3 * dentin_fraction(capped),
+          f"K takes the caps off ({dentin_fraction(open_cut):.3f} of the window dentin-coloured)")
+    xdo("key", "--window", window, "k")
+    time.sleep(1.0)
+    again = capture(window, os.path.join(out, "capped-again.png"))
+    check(dentin_fraction(again) > 0.7 * dentin_fraction(capped),
+          f"and K again puts them back ({dentin_fraction(again):.3f})")
+    finish(proc)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "real-ct", "stall", "key-sensor"):
+    if len(sys.argv) != 5 or sys.argv[1] not in ("view-and-swap", "swap", "mouse", "real-ct", "stall", "key-sensor",
+                                                 "cut-caps"):
         sys.exit(__doc__)
     mode, millsim, scene, out = sys.argv[1:]
     os.makedirs(out, exist_ok=True)
     for name in os.listdir(out):
         os.remove(os.path.join(out, name))
     {"view-and-swap": view_and_swap, "swap": swap, "mouse": mouse, "real-ct": real_ct, "stall": stall,
-     "key-sensor": key_sensor}[mode](millsim, scene, out)
+     "key-sensor": key_sensor, "cut-caps": cut_caps}[mode](millsim, scene, out)
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)
