@@ -549,7 +549,8 @@ private:
     if (it == doc.defs->end() && doc.skippedDefs.count(name)) return nullptr;  // its DEF was skipped, with a warning
     if (it == doc.defs->end()) {
       // X3D needs the DEF first; browsers skip a USE that comes before it with a warning.
-      if (const xmlNode* later = laterDef(xmlDocGetRootElement(doc.xml), name)) {
+      bool passed = false;
+      if (const xmlNode* later = name.empty() ? nullptr : laterDef(xmlDocGetRootElement(doc.xml), el, name, passed)) {
         sink_.warning(locateAttr(doc, tag, "USE", loc),
                       "USE '" + name + "' comes before its DEF (line " + std::to_string(xmlGetLineNo(later)) +
                           "); X3D needs the DEF first, so this USE is skipped");
@@ -574,14 +575,16 @@ private:
     return it->second;
   }
 
-  // The element under `el` (in document order) whose DEF is `name`, or null.
-  static const xmlNode* laterDef(const xmlNode* el, const std::string& name) {
+  // The first element after `use` (in document order, from `el` on) whose
+  // DEF is `name`, or null; `passed` turns true once `use` is reached.
+  static const xmlNode* laterDef(const xmlNode* el, const xmlNode* use, const std::string& name, bool& passed) {
     for (; el; el = el->next) {
       if (el->type != XML_ELEMENT_NODE) continue;
-      if (const xmlAttr* def = findAttr(el, "DEF"); def && def->children && def->children->content &&
+      if (el == use) passed = true;
+      if (const xmlAttr* def = findAttr(el, "DEF"); passed && def && def->children && def->children->content &&
                                                     name == reinterpret_cast<const char*>(def->children->content))
         return el;
-      if (const xmlNode* inner = laterDef(el->children, name)) return inner;
+      if (const xmlNode* inner = laterDef(el->children, use, name, passed)) return inner;
     }
     return nullptr;
   }
