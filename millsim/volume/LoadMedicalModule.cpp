@@ -17,7 +17,8 @@ const MedicalModule* openMedicalModule(std::string& error) {
   return static_cast<const MedicalModule*>(openSiblingLibrary(
       "libmillsim_medical.so", "MILLSIM_MEDICAL_LIBRARY", "millsim_medical_module", kMedicalAbiVersion,
       "medical-image",
-      "MetaImage, VTI and DICOM reading needs VTK 9.1 and GDCM 3.0: Debian packages libvtk9.1 and libgdcm3.0",
+      "MetaImage, VTI, DICOM and TIFF-slice reading needs VTK 9.1, GDCM 3.0 and libtiff: Debian packages "
+      "libvtk9.1, libgdcm3.0 and libtiff6",
       error));
 }
 
@@ -56,6 +57,10 @@ VoxelVolume readVti(const std::filesystem::path& file, float airValue) {
 
 VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue) {
   return moduleFor(fileOrFolder).readDicom(fileOrFolder, airValue);
+}
+
+VoxelVolume readSliceStack(const std::filesystem::path& source, float airValue, glm::dvec3 voxelSize) {
+  return moduleFor(source).readSliceStack(source, airValue, voxelSize);
 }
 
 }  // namespace millsim

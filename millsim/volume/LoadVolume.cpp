@@ -16,8 +16,9 @@ namespace millsim {
 namespace {
 
 const char* const kSupported =
-    ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, phantom:tooth, or a surface mesh "
-    "(.stl, .obj, .ply) with the VolumeObject's voxelSize";
+    ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, a folder, pattern (slice_%04d.tif) or "
+    "multi-page .tif of TIFF slices, phantom:tooth, or a surface mesh (.stl, .obj, .ply) with the VolumeObject's "
+    "voxelSize";
 
 // "scheme:" at the start of a url (two or more letters, so that "C:" is not one).
 std::string urlScheme(const std::string& url) {
@@ -50,7 +51,33 @@ bool hasDicomMagic(const fs::path& file) {
 
 }  // namespace
 
-LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue, const MeshVoxelOptions* mesh) {
+bool isSliceStackPattern(const std::string& path) {
+  const std::size_t pct = path.find('%');
+  if (pct == std::string::npos) return false;
+  std::size_t i = pct + 1;
+  while (i < path.size() && std::isdigit(static_cast<unsigned char>(path[i]))) ++i;
+  return i < path.size() && path[i] == 'd' && path.find('%', pct + 1) == std::string::npos;
+}
+
+namespace {
+
+bool isTiffFile(const fs::path& p) {
+  const std::string ext = asciiLower(p.extension().string());
+  return ext == ".tif" || ext == ".tiff";
+}
+
+// A folder of TIFF slices (a micro-CT stack) rather than DICOM ones.
+bool holdsTiffSlices(const fs::path& folder) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec))
+    if (e.is_regular_file(ec) && isTiffFile(e.path())) return true;
+  return false;
+}
+
+}  // namespace
+
+LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue, const MeshVoxelOptions* mesh,
+                        glm::dvec3 voxelSize) {
   if (url.empty()) throw VolumeError("(empty url): no volume file given (expected " + std::string(kSupported) + ")");
   const std::string scheme = urlScheme(url);
   if (scheme == "phantom") return LoadedVolume{makeToothPhantom(parsePhantomUrl(url)), "phantom", url};
@@ -78,9 +105,12 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   if (path.is_relative() && !baseDir.empty()) path = baseDir / path;
   path = path.lexically_normal();
   const std::string name = path.string();
+  if (isSliceStackPattern(name)) return LoadedVolume{readSliceStack(path, airValue, voxelSize), "slices", name};
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (!fs::exists(st)) throw VolumeError(name + ": no such file or folder");
+  if (fs::is_directory(st) && holdsTiffSlices(path))
+    return LoadedVolume{readSliceStack(path, airValue, voxelSize), "slices", name};
   if (fs::is_directory(st)) return LoadedVolume{readDicom(path, airValue), "dicom", name};
   // Reading a FIFO would wait forever and a device such as /dev/zero never ends.
   if (!fs::is_regular_file(st))
@@ -91,6 +121,7 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   if (ext == ".nrrd" || ext == ".nhdr") return LoadedVolume{readNrrd(path, airValue), "nrrd", name};
   if (ext == ".mha" || ext == ".mhd") return LoadedVolume{readMetaImage(path, airValue), "metaimage", name};
   if (ext == ".vti") return LoadedVolume{readVti(path, airValue), "vti", name};
+  if (isTiffFile(path)) return LoadedVolume{readSliceStack(path, airValue, voxelSize), "slices", name};
   if (isMeshFile(path)) {
     if (!mesh || !(mesh->voxelSize > 0.0))
       throw VolumeError(name + ": a surface mesh has no voxels; the VolumeObject's voxelSize says how fine to voxelise "

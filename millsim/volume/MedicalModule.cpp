@@ -4,7 +4,8 @@
 namespace {
 
 const millsim::MedicalModule kModule{millsim::kMedicalAbiVersion, &millsim::medical::readMetaImage,
-                                     &millsim::medical::readVti, &millsim::medical::readDicom};
+                                     &millsim::medical::readVti, &millsim::medical::readDicom,
+                                     &millsim::medical::readSliceStack};
 
 }  // namespace
 

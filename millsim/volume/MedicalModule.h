@@ -1,7 +1,7 @@
 #pragma once
 // The medical-image library, libmillsim_medical: the readers that need VTK
-// (MetaImage, VTI) or GDCM (DICOM), and the iso-surface mesher (VTK's flying
-// edges). libmillsim does not link it: readMetaImage(), readVti() and
+// (MetaImage, VTI), GDCM (DICOM) or libtiff (micro-CT slice stacks), and the
+// iso-surface mesher (VTK's flying edges). libmillsim does not link it: readMetaImage(), readVti() and
 // readDicom() (VolumeIO.h) open it on first use through loadMedicalModule(),
 // so that a process that reads no such file — `millsim --version`, `millsim
 // nodes`, a scene of a .vdb, .nrrd or phantom volume — never maps VTK or GDCM.
@@ -15,13 +15,14 @@
 namespace millsim {
 
 // Bumped whenever this table changes incompatibly.
-inline constexpr int kMedicalAbiVersion = 1;
+inline constexpr int kMedicalAbiVersion = 2;
 
 struct MedicalModule {
   int abiVersion;
   VoxelVolume (*readMetaImage)(const std::filesystem::path& file, float airValue);
   VoxelVolume (*readVti)(const std::filesystem::path& file, float airValue);
   VoxelVolume (*readDicom)(const std::filesystem::path& fileOrFolder, float airValue);
+  VoxelVolume (*readSliceStack)(const std::filesystem::path& source, float airValue, glm::dvec3 voxelSize);
 };
 
 // Opens the library once per process (MILLSIM_MEDICAL_LIBRARY overrides its
@@ -36,6 +37,7 @@ namespace medical {
 VoxelVolume readMetaImage(const std::filesystem::path& file, float airValue);
 VoxelVolume readVti(const std::filesystem::path& file, float airValue);
 VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue);
+VoxelVolume readSliceStack(const std::filesystem::path& source, float airValue, glm::dvec3 voxelSize);
 }  // namespace medical
 
 }  // namespace millsim

@@ -30,8 +30,9 @@ struct LoadedVolume {
 // options (MeshVolume.h; without them a mesh is an error saying a voxel size
 // is needed). Relative paths are resolved against baseDir. Density values at
 // or below airValue become air (the sparse background).
+// `voxelSize` (0: none) is the VolumeObject's, for a format that may carry none (slices).
 LoadedVolume loadVolume(const std::string& url, const std::filesystem::path& baseDir, float airValue,
-                        const MeshVoxelOptions* mesh = nullptr);
+                        const MeshVoxelOptions* mesh = nullptr, glm::dvec3 voxelSize = glm::dvec3(0.0));
 
 VoxelVolume readVdb(const std::filesystem::path& file, float airValue);
 VoxelVolume readNrrd(const std::filesystem::path& file, float airValue);       // .nrrd, .nhdr; raw or gzip
@@ -43,6 +44,17 @@ VoxelVolume readVti(const std::filesystem::path& file, float airValue);        /
 // A folder of CT slices (or one slice file): rescale slope/intercept applied,
 // slices ordered by position along the slice normal; refuses non-CT modalities.
 VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue);
+// A micro-CT slice stack: a folder of greyscale TIFF slices (sorted naturally:
+// slice_2 before slice_10), a printf-style pattern ("slices/img_%04d.tif",
+// from the first index of 0–9 that exists to the last consecutive one), or
+// the pages of one .tif; 8 or 16-bit (or 32-bit float), one channel; at most
+// 20 000 slices. The pixel size is `voxelSize` when not 0, else a SkyScan
+// .log's "Image Pixel Size (um)" beside the slices, else the TIFF resolution
+// tags; slices are as far apart as pixels are wide. Values are the densities.
+VoxelVolume readSliceStack(const std::filesystem::path& folderPatternOrTiff, float airValue,
+                           glm::dvec3 voxelSize = glm::dvec3(0.0));
+// True for a path with one printf integer field (%d, %04d): a slice-stack pattern.
+bool isSliceStackPattern(const std::string& path);
 
 // Throws VolumeError "FILE: no such file" or "FILE: is a folder, not WHAT".
 void requireFile(const std::filesystem::path& file, const std::string& what);

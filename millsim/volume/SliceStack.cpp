@@ -1,0 +1,272 @@
+// Slice stacks (VolumeIO.h, readSliceStack): one greyscale TIFF per slice in
+// a folder or a printf-style pattern, or the pages of one multi-page TIFF, as
+// micro-CT scanners of extracted teeth write them. libtiff reads every page
+// (any compression it knows); MillSim checks the shape of each against the
+// first before reading its pixels, and streams the slices into a
+// VolumeBuilder a row at a time, so memory is the sparse grid and one slab.
+// The pixel size comes from the VolumeObject's voxelSize, a SkyScan-style
+// .log beside the slices ("Image Pixel Size (um)="), or the TIFF resolution
+// tags, in that order; slices are as far apart as pixels are wide.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <tiffio.h>
+
+#include "millsim/volume/MedicalModule.h"
+#include "millsim/volume/ReaderLimits.h"
+#include "millsim/volume/VolumeBuilder.h"
+#include "millsim/volume/VolumeError.h"
+#include "millsim/volume/VolumeIO.h"
+
+namespace millsim {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t kMaxSlices = 20000;
+
+// libtiff reports through process-wide handlers; the last message of a read
+// is kept for its error (reads are serial: the loader holds no lock across them).
+thread_local std::string tiffMessage;
+void keepTiffMessage(const char* module, const char* fmtText, va_list args) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, fmtText, args);
+  tiffMessage = std::string(module ? module : "libtiff") + ": " + text;
+}
+void ignoreTiffWarning(const char*, const char*, va_list) {}
+
+struct TiffCloser {
+  void operator()(TIFF* t) const { TIFFClose(t); }
+};
+using TiffFile = std::unique_ptr<TIFF, TiffCloser>;
+
+TiffFile openTiff(const fs::path& file) {
+  TIFFSetErrorHandler(keepTiffMessage);
+  TIFFSetWarningHandler(ignoreTiffWarning);
+  tiffMessage.clear();
+  TiffFile t(TIFFOpen(file.c_str(), "r"));
+  if (!t) throw VolumeError(file.string() + ": not a TIFF file libtiff can read (" + tiffMessage + ")");
+  return t;
+}
+
+struct Page {
+  glm::ivec2 size{0};
+  int bits = 0;
+  bool isSigned = false, isFloat = false, minIsWhite = false;
+  double pixelMm = 0.0;  // from the resolution tags; 0 when they say nothing
+};
+
+Page pageOf(TIFF* t, const std::string& where) {
+  std::uint32_t w = 0, h = 0;
+  std::uint16_t bits = 1, samples = 1, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK, unit = RESUNIT_INCH;
+  TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &w);
+  TIFFGetField(t, TIFFTAG_IMAGELENGTH, &h);
+  TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &bits);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &samples);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &format);
+  TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photometric);
+  if (samples != 1)
+    throw VolumeError(where + " has " + std::to_string(samples) + " samples a pixel; a slice is one grey channel");
+  if (photometric != PHOTOMETRIC_MINISBLACK && photometric != PHOTOMETRIC_MINISWHITE)
+    throw VolumeError(where + " is not greyscale (photometric " + std::to_string(photometric) + ")");
+  const bool isFloat = format == SAMPLEFORMAT_IEEEFP;
+  if (!(bits == 8 || bits == 16 || (isFloat && bits == 32)))
+    throw VolumeError(where + " has " + std::to_string(bits) + "-bit pixels; slices are 8 or 16-bit integers (or 32-bit float)");
+  if (w == 0 || h == 0 || w > (1u << 16) || h > (1u << 16))
+    throw VolumeError(where + " is " + std::to_string(w) + " × " + std::to_string(h) + " pixels; expected 1 to 65536 a side");
+  Page p{glm::ivec2(int(w), int(h)), bits, format == SAMPLEFORMAT_INT, isFloat, photometric == PHOTOMETRIC_MINISWHITE, 0.0};
+  float xres = 0.f;
+  if (TIFFGetField(t, TIFFTAG_XRESOLUTION, &xres) && xres > 0.f && std::isfinite(xres)) {
+    TIFFGetFieldDefaulted(t, TIFFTAG_RESOLUTIONUNIT, &unit);
+    if (unit == RESUNIT_CENTIMETER) p.pixelMm = 10.0 / double(xres);
+    if (unit == RESUNIT_INCH) p.pixelMm = 25.4 / double(xres);
+  }
+  return p;
+}
+
+// One page's rows into the builder, as densities.
+void readPage(TIFF* t, const Page& p, VolumeBuilder& builder, const std::string& where) {
+  std::vector<unsigned char> row(std::size_t(TIFFScanlineSize(t)));
+  if (row.size() < std::size_t(p.size.x) * std::size_t(p.bits / 8))
+    throw VolumeError(where + ": its rows are shorter than its width says");
+  const double white = p.bits == 8 ? 255.0 : 65535.0;
+  std::vector<float> values(std::size_t(p.size.x));
+  for (int y = 0; y < p.size.y; ++y) {
+    tiffMessage.clear();
+    if (TIFFReadScanline(t, row.data(), std::uint32_t(y), 0) < 0)
+      throw VolumeError(where + ": row " + std::to_string(y) + " cannot be read (" + tiffMessage + "); is the file cut short?");
+    for (int x = 0; x < p.size.x; ++x) {
+      double v;
+      if (p.bits == 8) {
+        v = p.isSigned ? double(std::int8_t(row[std::size_t(x)])) : double(row[std::size_t(x)]);
+      } else if (p.bits == 16) {
+        std::uint16_t u;
+        std::memcpy(&u, &row[std::size_t(x) * 2], 2);  // libtiff gives host order
+        v = p.isSigned ? double(std::int16_t(u)) : double(u);
+      } else {
+        float f;
+        std::memcpy(&f, &row[std::size_t(x) * 4], 4);
+        v = double(f);
+      }
+      if (p.minIsWhite && !p.isFloat) v = white - v;
+      values[std::size_t(x)] = float(v);
+    }
+    builder.append(values.data(), values.size());
+  }
+}
+
+// Digit runs compare by value: slice_2 before slice_10.
+bool naturalLess(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+      std::size_t ie = i, je = j;
+      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+      std::string na = a.substr(i, ie - i), nb = b.substr(j, je - j);
+      na.erase(0, std::min(na.find_first_not_of('0'), na.size() - 1));
+      nb.erase(0, std::min(nb.find_first_not_of('0'), nb.size() - 1));
+      if (na.size() != nb.size()) return na.size() < nb.size();
+      if (na != nb) return na < nb;
+      i = ie, j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+bool isTiff(const fs::path& p) {
+  const std::string ext = asciiLower(p.extension().string());
+  return ext == ".tif" || ext == ".tiff";
+}
+
+// "Image Pixel Size (um)=12.5" in a .log beside the slices (SkyScan's reconstruction log).
+std::optional<double> pixelSizeFromLog(const fs::path& folder) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    if (asciiLower(e.path().extension().string()) != ".log" || !e.is_regular_file(ec)) continue;
+    std::ifstream in(e.path());
+    std::string line;
+    for (int n = 0; n < 2000 && std::getline(in, line); ++n) {
+      const std::size_t at = line.find("Image Pixel Size (um)=");
+      if (at == std::string::npos) continue;
+      try {
+        const double um = std::stod(line.substr(at + 22));
+        if (um > 0.0 && std::isfinite(um)) return um * 1e-3;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<fs::path> sliceFiles(const fs::path& folderOrPattern) {
+  std::vector<fs::path> files;
+  const std::string text = folderOrPattern.string();
+  if (isSliceStackPattern(text)) {
+    // The first index that exists among 0 … 9, then every next one until one is missing.
+    auto name = [&](std::size_t i) {
+      std::vector<char> buf(text.size() + 32);
+      std::snprintf(buf.data(), buf.size(), text.c_str(), int(i));
+      return fs::path(buf.data());
+    };
+    std::size_t first = 0;
+    while (first < 10 && !fs::exists(name(first))) ++first;
+    if (first == 10) throw VolumeError(text + ": no slice file matches the pattern (tried indices 0 to 9 for the first)");
+    for (std::size_t i = first; fs::exists(name(i)); ++i) {
+      if (files.size() == kMaxSlices)
+        throw VolumeError(text + ": more than " + std::to_string(kMaxSlices) + " slices; MillSim reads at most that many");
+      files.push_back(name(i));
+    }
+    return files;
+  }
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folderOrPattern, ec))
+    if (e.is_regular_file(ec) && isTiff(e.path())) {
+      if (files.size() == kMaxSlices)
+        throw VolumeError(text + ": more than " + std::to_string(kMaxSlices) + " slices; MillSim reads at most that many");
+      files.push_back(e.path());
+    }
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    return naturalLess(a.filename().string(), b.filename().string());
+  });
+  if (files.empty()) throw VolumeError(text + ": no .tif or .tiff slices in the folder");
+  return files;
+}
+
+}  // namespace
+
+VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm::dvec3 voxelSize) {
+  // A single .tif: its pages are the slices; else one file a slice.
+  const bool onePerFile = !(fs::is_regular_file(source) && isTiff(source));
+  const std::vector<fs::path> files = onePerFile ? sliceFiles(source) : std::vector<fs::path>{source};
+  const std::string name = source.string();
+
+  // The shape: every page must match the first.
+  TiffFile first = openTiff(files[0]);
+  const Page shape = pageOf(first.get(), files[0].string());
+  std::size_t slices = files.size();
+  if (!onePerFile) {
+    slices = 0;
+    do {
+      const Page p = pageOf(first.get(), name + " page " + std::to_string(slices + 1));
+      if (p.size != shape.size || p.bits != shape.bits)
+        throw VolumeError(name + " page " + std::to_string(slices + 1) + " is " + std::to_string(p.size.x) + " × " +
+                          std::to_string(p.size.y) + " pixels of " + std::to_string(p.bits) + " bits; the first is " +
+                          std::to_string(shape.size.x) + " × " + std::to_string(shape.size.y) + " of " + std::to_string(shape.bits));
+      if (++slices > kMaxSlices)
+        throw VolumeError(name + ": more than " + std::to_string(kMaxSlices) + " pages; MillSim reads at most that many");
+    } while (TIFFReadDirectory(first.get()));
+    TIFFSetDirectory(first.get(), 0);
+  }
+
+  // The pixel size: the VolumeObject's, a SkyScan .log's, or the tags'.
+  if (!(voxelSize.x > 0.0)) {
+    const fs::path folder = onePerFile ? fs::path(files[0]).parent_path() : source.parent_path();
+    if (const auto mm = pixelSizeFromLog(folder.empty() ? fs::path(".") : folder)) voxelSize = glm::dvec3(*mm * 1e-3);
+    else if (shape.pixelMm > 0.0) voxelSize = glm::dvec3(shape.pixelMm * 1e-3);
+    else
+      throw VolumeError(name + ": no pixel size in the TIFF resolution tags or in a SkyScan .log beside the slices; "
+                               "give the VolumeObject's voxelSize");
+  }
+
+  VolumeBuilder builder(glm::ivec3(shape.size.x, shape.size.y, int(slices)), voxelSize, airValue, name);
+  if (onePerFile) {
+    readPage(first.get(), shape, builder, files[0].string());
+    first.reset();
+    for (std::size_t i = 1; i < files.size(); ++i) {
+      TiffFile t = openTiff(files[i]);
+      const Page p = pageOf(t.get(), files[i].string());
+      if (p.size != shape.size || p.bits != shape.bits || p.isFloat != shape.isFloat)
+        throw VolumeError(files[i].string() + " is " + std::to_string(p.size.x) + " × " + std::to_string(p.size.y) +
+                          " pixels of " + std::to_string(p.bits) + " bits; the first slice, " + files[0].filename().string() +
+                          ", is " + std::to_string(shape.size.x) + " × " + std::to_string(shape.size.y) + " of " +
+                          std::to_string(shape.bits));
+      readPage(t.get(), p, builder, files[i].string());
+    }
+  } else {
+    std::size_t page = 0;
+    do readPage(first.get(), pageOf(first.get(), name), builder, name + " page " + std::to_string(++page));
+    while (TIFFReadDirectory(first.get()));
+  }
+  return builder.finish();
+}
+
+}  // namespace millsim

@@ -1,0 +1,171 @@
+// Micro-CT slice stacks (readSliceStack; issue 45, part 3): 16-bit TIFF slices
+// in a folder, a printf pattern or one multi-page file read voxel for voxel as
+// the NRRD of the same data; the pixel size from the resolution tags or a
+// SkyScan .log; slices sorted naturally; mismatched, truncated, colour and
+// unsized stacks refused naming the file. The slices are written here with
+// libtiff's writing API.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <tiffio.h>
+
+#include "TestFiles.h"
+#include "millsim/core/NodeRegistry.h"
+#include "millsim/volume/VolumeError.h"
+#include "millsim/volume/VolumeIO.h"
+#include "millsim/volume/VolumeObject.h"
+#include "millsim/x3d/X3DLoader.h"
+
+using namespace millsim;
+using namespace millsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kW = 20, kH = 16, kSlices = 12;
+constexpr float kAir = -1000.f;
+
+// Slice z, pixel (x, y): distinct for every voxel, some of it air (0 is above kAir; 40000 past 32767).
+std::uint16_t value(int x, int y, int z) { return std::uint16_t((x * 997 + y * 131 + z * 4099) % 40000); }
+
+// One page (the current directory of `t`), 16-bit grey; `pixelMm` 0: no resolution tags.
+void writePage(TIFF* t, int z, double pixelMm, int width = kW, int samples = 1) {
+  TIFFSetField(t, TIFFTAG_IMAGEWIDTH, width);
+  TIFFSetField(t, TIFFTAG_IMAGELENGTH, kH);
+  TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 16);
+  TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, samples);
+  TIFFSetField(t, TIFFTAG_PHOTOMETRIC, samples == 1 ? PHOTOMETRIC_MINISBLACK : PHOTOMETRIC_RGB);
+  TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, 4);
+  if (pixelMm > 0.0) {
+    TIFFSetField(t, TIFFTAG_RESOLUTIONUNIT, RESUNIT_CENTIMETER);
+    TIFFSetField(t, TIFFTAG_XRESOLUTION, float(10.0 / pixelMm));
+    TIFFSetField(t, TIFFTAG_YRESOLUTION, float(10.0 / pixelMm));
+  }
+  std::vector<std::uint16_t> row(std::size_t(width * samples));
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < width * samples; ++x) row[std::size_t(x)] = value(x / samples, y, z);
+    ASSERT_EQ(TIFFWriteScanline(t, row.data(), std::uint32_t(y), 0), 1);
+  }
+}
+
+fs::path writeSlice(const fs::path& file, int z, double pixelMm, int width = kW, int samples = 1) {
+  TIFF* t = TIFFOpen(file.c_str(), "w");
+  EXPECT_NE(t, nullptr);
+  writePage(t, z, pixelMm, width, samples);
+  TIFFClose(t);
+  return file;
+}
+
+// The same voxels as a NRRD, through the project's NRRD writer and reader.
+VoxelVolume throughNrrd(const fs::path& dir) {
+  std::vector<float> values;
+  for (int z = 0; z < kSlices; ++z)
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) values.push_back(float(value(x, y, z)));
+  const VoxelVolume v = VoxelVolume::fromDense(values.data(), {kW, kH, kSlices}, glm::dvec3(50e-6), kAir);
+  writeNrrd(v, dir / "same.nrrd", false);
+  return readNrrd(dir / "same.nrrd", kAir);
+}
+
+void expectSameVoxels(const VoxelVolume& a, const VoxelVolume& b) {
+  ASSERT_EQ(a.dims(), b.dims());
+  int differing = 0;
+  for (int z = 0; z < kSlices; ++z)
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) differing += a.valueAt(x, y, z) != b.valueAt(x, y, z);
+  EXPECT_EQ(differing, 0) << "voxels that differ from the NRRD of the same data";
+}
+
+std::string errorOf(const fs::path& source, glm::dvec3 voxelSize = glm::dvec3(0.0)) {
+  try {
+    readSliceStack(source, kAir, voxelSize);
+  } catch (const VolumeError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SliceStack, AFolderOfSixteenBitSlicesIsTheNrrdOfTheSameData) {
+  ScratchDir dir;
+  fs::create_directories(dir.path() / "scan");
+  // Named so that plain string order would be wrong: slice_2 after slice_10.
+  for (int z = 0; z < kSlices; ++z) writeSlice(dir.path() / "scan" / ("slice_" + std::to_string(z) + ".tif"), z, 0.05);
+  const VoxelVolume v = readSliceStack(dir.path() / "scan", kAir);
+  EXPECT_NEAR(v.voxelSize().x, 50e-6, 1e-9) << "the pixel size from the resolution tags";
+  EXPECT_NEAR(v.voxelSize().z, 50e-6, 1e-9);
+  expectSameVoxels(v, throughNrrd(dir.path()));
+}
+
+TEST(SliceStack, APatternAndAMultiPageTiffReadTheSame) {
+  ScratchDir dir;
+  for (int z = 0; z < kSlices; ++z) {
+    char name[32];
+    std::snprintf(name, sizeof name, "img_%04d.tif", z + 1);
+    writeSlice(dir.path() / name, z, 0.05);
+  }
+  const VoxelVolume nrrd = throughNrrd(dir.path());
+  expectSameVoxels(readSliceStack(dir.path() / "img_%04d.tif", kAir), nrrd);
+
+  TIFF* t = TIFFOpen((dir.path() / "stack.tif").c_str(), "w");
+  ASSERT_NE(t, nullptr);
+  for (int z = 0; z < kSlices; ++z) {
+    writePage(t, z, 0.05);
+    TIFFWriteDirectory(t);
+  }
+  TIFFClose(t);
+  const LoadedVolume loaded = loadVolume((dir.path() / "stack.tif").string(), {}, kAir);
+  EXPECT_EQ(loaded.format, "slices");
+  expectSameVoxels(loaded.volume, nrrd);
+}
+
+TEST(SliceStack, ASkyScanLogGivesThePixelSize) {
+  ScratchDir dir;
+  for (int z = 0; z < 3; ++z) writeSlice(dir.path() / ("rec" + std::to_string(z) + ".tif"), z, 0.0);
+  EXPECT_NE(errorOf(dir.path()).find("no pixel size in the TIFF resolution tags or in a SkyScan .log"), std::string::npos)
+      << errorOf(dir.path());
+  EXPECT_NEAR(readSliceStack(dir.path(), kAir, glm::dvec3(20e-6)).voxelSize().x, 20e-6, 1e-12) << "the VolumeObject's";
+  dir.write("rec.log", "[Reconstruction]\nImage Pixel Size (um)=12.500\n");
+  EXPECT_NEAR(readSliceStack(dir.path(), kAir).voxelSize().y, 12.5e-6, 1e-12);
+}
+
+TEST(SliceStack, BadStacksAreRefusedNamingTheFile) {
+  ScratchDir dir;
+  fs::create_directories(dir.path() / "sizes");
+  writeSlice(dir.path() / "sizes" / "a1.tif", 0, 0.05);
+  writeSlice(dir.path() / "sizes" / "a2.tif", 1, 0.05, kW + 3);
+  EXPECT_NE(errorOf(dir.path() / "sizes").find("a2.tif is 23 × 16 pixels of 16 bits; the first slice, a1.tif, is 20 × 16 of 16"),
+            std::string::npos)
+      << errorOf(dir.path() / "sizes");
+
+  fs::create_directories(dir.path() / "colour");
+  writeSlice(dir.path() / "colour" / "c.tif", 0, 0.05, kW, 3);
+  EXPECT_NE(errorOf(dir.path() / "colour").find("c.tif has 3 samples a pixel; a slice is one grey channel"), std::string::npos)
+      << errorOf(dir.path() / "colour");
+
+  fs::create_directories(dir.path() / "cut");
+  const fs::path whole = writeSlice(dir.path() / "cut" / "b.tif", 0, 0.05);
+  const auto bytes = fs::file_size(whole);
+  fs::resize_file(whole, bytes / 2);
+  const std::string cut = errorOf(dir.path() / "cut");
+  EXPECT_EQ(cut.rfind((dir.path() / "cut").string(), 0), 0u) << "a truncated slice is an error naming it: " << cut;
+  EXPECT_EQ(cut.find("(no error)"), std::string::npos);
+
+  EXPECT_NE(errorOf(dir.path() / "none_%03d.tif").find("no slice file matches the pattern"), std::string::npos);
+}
+
+TEST(SliceStack, AVolumeObjectLoadsAFolderOfSlices) {
+  ScratchDir dir;
+  fs::create_directories(dir.path() / "scan");
+  for (int z = 0; z < kSlices; ++z) writeSlice(dir.path() / "scan" / ("s" + std::to_string(z) + ".tif"), z, 0.05);
+  LoadResult r = loadSceneFile(
+      dir.write("s.x3d", x3d(R"(<VolumeObject DEF="V" url='"scan"' isoValue="20000" airValue="-1000"/>)")), builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const auto* v = dynamic_cast<const VolumeObject*>(r.scene->def("V").get());
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(v->format(), "slices");
+  EXPECT_EQ(v->volume()->dims(), glm::ivec3(kW, kH, kSlices));
+}
+
+}  // namespace
