@@ -52,11 +52,15 @@ bool hasDicomMagic(const fs::path& file) {
 }  // namespace
 
 bool isSliceStackPattern(const std::string& path) {
-  const std::size_t pct = path.find('%');
+  // Only a TIFF file name's own %d counts: a folder may have a '%' in its name.
+  const fs::path p(path);
+  const std::string file = p.filename().string(), ext = asciiLower(p.extension().string());
+  if (ext != ".tif" && ext != ".tiff") return false;
+  const std::size_t pct = file.find('%');
   if (pct == std::string::npos) return false;
   std::size_t i = pct + 1;
-  while (i < path.size() && std::isdigit(static_cast<unsigned char>(path[i]))) ++i;
-  return i < path.size() && path[i] == 'd' && path.find('%', pct + 1) == std::string::npos;
+  while (i < file.size() && std::isdigit(static_cast<unsigned char>(file[i]))) ++i;
+  return i < file.size() && file[i] == 'd' && file.find('%', pct + 1) == std::string::npos;
 }
 
 namespace {
@@ -66,12 +70,20 @@ bool isTiffFile(const fs::path& p) {
   return ext == ".tif" || ext == ".tiff";
 }
 
-// A folder of TIFF slices (a micro-CT stack) rather than DICOM ones.
+// A folder of TIFF slices (a micro-CT stack) rather than DICOM ones: TIFF
+// files and no DICOM file (a stray preview .tif in a DICOM series stays DICOM).
 bool holdsTiffSlices(const fs::path& folder) {
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(folder, ec))
-    if (e.is_regular_file(ec) && isTiffFile(e.path())) return true;
-  return false;
+  bool tiff = false;
+  int unnamed = 0;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    if (!e.is_regular_file(ec)) continue;
+    const std::string ext = asciiLower(e.path().extension().string());
+    if (ext == ".dcm" || ext == ".dicom") return false;
+    if (ext.empty() && ++unnamed <= 16 && hasDicomMagic(e.path())) return false;
+    tiff |= isTiffFile(e.path());
+  }
+  return tiff;
 }
 
 }  // namespace

@@ -29,7 +29,9 @@ constexpr std::size_t kMaxMeshLineBytes = 1 << 20;
 // Text read a line at a time, each capped, counting lines for messages.
 class MeshLines {
 public:
-  MeshLines(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
+  // `linesBefore`: lines already read (a PLY's header), so that numbers are the file's.
+  MeshLines(std::istream& in, std::string name, std::size_t linesBefore = 0)
+      : in_(in), name_(std::move(name)), number_(linesBefore) {}
   bool next(std::string& line) {
     line.clear();
     std::streambuf* b = in_.rdbuf();
@@ -53,7 +55,7 @@ public:
 private:
   std::istream& in_;
   std::string name_;
-  std::size_t number_ = 0;
+  std::size_t number_;
 };
 
 double meshNumber(const std::string& word, const std::string& where, const char* what) {
@@ -77,6 +79,8 @@ public:
       throw VolumeError(where + " more than " + std::to_string(kMaxMeshTriangles) + " triangles: too many to voxelise");
     auto it = index_.find(current_);
     if (it == index_.end()) {
+      if (names_.size() == kMaxMeshParts)
+        throw VolumeError(where + " more than " + std::to_string(kMaxMeshParts) + " parts; MillSim voxelises at most that many");
       it = index_.emplace(current_, corners_.size()).first;
       names_.push_back(current_);
       corners_.emplace_back();
@@ -181,6 +185,7 @@ std::vector<MeshPart> readBinaryStl(std::istream& in, std::uint32_t count, const
   if (count > kMaxMeshTriangles)
     throw VolumeError(name + ": " + std::to_string(count) + " triangles, more than " + std::to_string(kMaxMeshTriangles) + " to voxelise");
   MeshPartsBuilder parts(stem);
+  const std::string prefix = name + ":";
   char record[50];
   in.seekg(84);
   for (std::uint32_t i = 0; i < count; ++i) {
@@ -190,7 +195,7 @@ std::vector<MeshPart> readBinaryStl(std::istream& in, std::uint32_t count, const
     for (int k = 3; k < 12; ++k)
       if (!std::isfinite(f[k]) || std::abs(f[k]) > 1e9f)
         throw VolumeError(name + ": triangle " + std::to_string(i + 1) + " has a coordinate that is not a finite number below 1e9");
-    parts.add({f[3], f[4], f[5]}, {f[6], f[7], f[8]}, {f[9], f[10], f[11]}, name + ":");
+    parts.add({f[3], f[4], f[5]}, {f[6], f[7], f[8]}, {f[9], f[10], f[11]}, prefix);
   }
   return parts.take();
 }
@@ -200,17 +205,25 @@ std::vector<MeshPart> readBinaryStl(std::istream& in, std::uint32_t count, const
 std::vector<MeshPart> readObj(std::istream& in, const std::string& name, const std::string& stem) {
   MeshLines lines(in, name);
   std::vector<glm::vec3> vertices;
+  // Faces resolve after every vertex is read (a file may refer ahead); parts
+  // keep their first-seen order. Flat: a face is a few numbers, not strings.
   struct Face {
-    std::string part;
-    std::vector<long long> corners;  // as written: 1-based, or negative from the end
-    std::size_t verticesBefore;
-    std::string where;
+    std::uint32_t part;
+    std::uint32_t count;           // corners
+    std::uint64_t first;           // into corners
+    std::uint64_t verticesBefore;  // for negative (relative) corners
+    std::uint64_t line;
   };
-  // Faces resolve after every vertex is read (a file may refer ahead); parts keep their first-seen order.
   std::vector<Face> faces;
-  std::string part = stem, line;
+  std::vector<long long> corners;  // as written: 1-based, or negative from the end
+  std::vector<std::string> partNames{stem};
+  std::map<std::string, std::uint32_t> partIndex{{stem, 0}};
+  std::uint32_t part = 0;
+  std::size_t lineNumber = 0;
+  std::string line;
   std::uint64_t triangles = 0;
   while (lines.next(line)) {
+    ++lineNumber;
     const std::size_t hash = line.find('#');
     if (hash != std::string::npos) line.resize(hash);
     const std::vector<std::string> w = words(line);
@@ -221,38 +234,47 @@ std::vector<MeshPart> readObj(std::istream& in, const std::string& name, const s
       vertices.push_back(meshPoint(w, 1, lines.where()));
     } else if (w[0] == "f") {
       if (w.size() < 4) throw VolumeError(lines.where() + " a face needs at least three vertices");
-      Face f{part, {}, vertices.size(), lines.where()};
+      Face f{part, std::uint32_t(w.size() - 1), corners.size(), vertices.size(), lineNumber};
       for (std::size_t i = 1; i < w.size(); ++i) {
         const std::string first = w[i].substr(0, w[i].find('/'));  // v, v/vt, v//vn, v/vt/vn
         long long v = 0;
         const auto [ptr, ec] = std::from_chars(first.data(), first.data() + first.size(), v);
         if (ec != std::errc() || ptr != first.data() + first.size() || v == 0)
           throw VolumeError(lines.where() + " face vertex '" + w[i] + "' is not a vertex number (1, 2, … or −1 for the last)");
-        f.corners.push_back(v);
+        corners.push_back(v);
       }
-      triangles += f.corners.size() - 2;
+      triangles += f.count - 2;
       if (triangles > kMaxMeshTriangles)
         throw VolumeError(lines.where() + " more than " + std::to_string(kMaxMeshTriangles) + " triangles: too many to voxelise");
-      faces.push_back(std::move(f));
+      faces.push_back(f);
     } else if (w[0] == "o" || w[0] == "g") {
       std::string n;
       for (std::size_t i = 1; i < w.size(); ++i) n += (i > 1 ? " " : "") + w[i];
-      part = n.empty() ? stem : n;
+      if (n.empty()) n = stem;
+      const auto [it, added] = partIndex.emplace(n, std::uint32_t(partNames.size()));
+      if (added) {
+        if (partNames.size() == kMaxMeshParts)
+          throw VolumeError(lines.where() + " more than " + std::to_string(kMaxMeshParts) + " groups; MillSim voxelises at most that many parts");
+        partNames.push_back(n);
+      }
+      part = it->second;
     }
     // vt, vn, usemtl, mtllib, s, l, p and the rest carry nothing a solid needs.
   }
   MeshPartsBuilder parts(stem);
+  const std::string prefix = name + ":";
   for (const Face& f : faces) {
-    parts.select(f.part);
+    parts.select(partNames[f.part]);
     auto at = [&](long long v) {
       const long long i = v > 0 ? v - 1 : (long long)f.verticesBefore + v;
       if (i < 0 || i >= (long long)vertices.size())
-        throw VolumeError(f.where + " face vertex " + std::to_string(v) + " is out of range (the file has " +
-                          std::to_string(vertices.size()) + " vertices)");
+        throw VolumeError(name + ":" + std::to_string(f.line) + ": face vertex " + std::to_string(v) +
+                          " is out of range (the file has " + std::to_string(vertices.size()) + " vertices)");
       return vertices[std::size_t(i)];
     };
-    const glm::vec3 a = at(f.corners[0]);
-    for (std::size_t i = 2; i < f.corners.size(); ++i) parts.add(a, at(f.corners[i - 1]), at(f.corners[i]), f.where);
+    const long long* c = corners.data() + f.first;
+    const glm::vec3 a = at(c[0]);
+    for (std::uint32_t i = 2; i < f.count; ++i) parts.add(a, at(c[i - 1]), at(c[i]), prefix);
   }
   if (faces.empty()) throw VolumeError(name + ": no faces ('f' lines): nothing to voxelise");
   return parts.take();
@@ -265,6 +287,7 @@ struct PlyProperty {
   int bytes = 0;          // the value's, or the list's items'
   int countBytes = 0;     // a list's count; 0 for a plain property
   bool isFloat = false, isSigned = false;
+  bool countSigned = false;
 };
 
 int plyTypeBytes(const std::string& t, bool& isFloat, bool& isSigned) {
@@ -338,6 +361,7 @@ std::vector<MeshPart> readPly(std::istream& in, std::uintmax_t fileBytes, const 
       bool f = false, s = false;
       if (w.size() == 5 && w[1] == "list") {
         prop.countBytes = plyTypeBytes(w[2], f, s);
+        prop.countSigned = s;
         if (prop.countBytes == 0 || f) throw VolumeError(where + " list count type '" + w[2] + "' is not an integer type");
         prop.bytes = plyTypeBytes(w[3], prop.isFloat, prop.isSigned);
         prop.name = w[4];
@@ -369,6 +393,9 @@ std::vector<MeshPart> readPly(std::istream& in, std::uintmax_t fileBytes, const 
       indices = int(i);
   if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) throw VolumeError(name + ": the PLY vertex element has no x, y and z");
   if (indices < 0) throw VolumeError(name + ": the PLY face element has no vertex_indices list");
+  if (face->properties[std::size_t(indices)].isFloat)
+    throw VolumeError(name + ": the PLY face list '" + face->properties[std::size_t(indices)].name +
+                      "' holds floating-point values; vertex indices are integers");
   // Every element takes a byte a value at least (ASCII: a digit and a space, two): refuse counts the file cannot hold.
   std::uint64_t least = 0;
   for (const PlyElement& e : elements) {
@@ -380,7 +407,8 @@ std::vector<MeshPart> readPly(std::istream& in, std::uintmax_t fileBytes, const 
   const bool ascii = format == "ascii", big = format == "binary_big_endian";
   std::vector<glm::vec3> vertices;
   MeshPartsBuilder parts(stem);
-  MeshLines lines(in, name);
+  MeshLines lines(in, name, lineNo);
+  const std::string prefix = name + ":";
   std::vector<double> values;
   // One element's values: plain properties, then a list's items after its count.
   auto readElement = [&](const PlyElement& e, std::vector<double>& out, std::vector<long long>& list, int listProperty) {
@@ -398,10 +426,13 @@ std::vector<MeshPart> readPly(std::istream& in, std::uintmax_t fileBytes, const 
           out[p] = v;
           continue;
         }
-        if (v < 0 || v > 1000) throw VolumeError(lines.where() + " a list of " + w[at - 1] + " items");
+        if (v < 0 || v > 1000 || v != std::floor(v))
+          throw VolumeError(lines.where() + " a list of '" + w[at - 1] + "' items; expected a whole number up to 1000");
         for (int k = 0; k < int(v); ++k) {
           if (at >= w.size()) throw VolumeError(lines.where() + " too few values for a " + e.name);
           const double item = meshNumber(w[at++], lines.where(), "value");
+          if (int(p) == listProperty && item != std::floor(item))
+            throw VolumeError(lines.where() + " vertex index '" + w[at - 1] + "' is not a whole number");
           if (int(p) == listProperty) list.push_back((long long)item);
         }
       }
@@ -419,13 +450,13 @@ std::vector<MeshPart> readPly(std::istream& in, std::uintmax_t fileBytes, const 
         continue;
       }
       read(prop.countBytes);
-      PlyProperty countType{prop.name, prop.countBytes, 0, false, false};
+      PlyProperty countType{prop.name, prop.countBytes, 0, false, prop.countSigned};
       const double n = plyBinaryValue(buf, countType, prop.countBytes, big);
-      if (n > 1000) throw VolumeError(name + ": a " + e.name + " list of " + fmt(n) + " items");
+      if (n < 0 || n > 1000) throw VolumeError(name + ": a " + e.name + " list of " + fmt(n) + " items; expected 0 to 1000");
       for (int k = 0; k < int(n); ++k) {
         read(prop.bytes);
-        const double item = plyBinaryValue(buf, prop, prop.bytes, big);
-        if (int(p) == listProperty) list.push_back((long long)item);
+        const double item = plyBinaryValue(buf, prop, prop.bytes, big);  // an integer type: finite, at most 2^64
+        if (int(p) == listProperty) list.push_back(item > 1e18 ? -1 : (long long)item);
       }
     }
   };
@@ -445,7 +476,7 @@ std::vector<MeshPart> readPly(std::istream& in, std::uintmax_t fileBytes, const 
             throw VolumeError(name + ": face " + std::to_string(i) + " names vertex " + std::to_string(v) + " of " +
                               std::to_string(vertices.size()));
         for (std::size_t k = 2; k < list.size(); ++k)
-          parts.add(vertices[std::size_t(list[0])], vertices[std::size_t(list[k - 1])], vertices[std::size_t(list[k])], name + ":");
+          parts.add(vertices[std::size_t(list[0])], vertices[std::size_t(list[k - 1])], vertices[std::size_t(list[k])], prefix);
       }
     }
   }
@@ -548,8 +579,10 @@ OpenEdges openEdges(const MeshPart& part) {
     l.first += 0.5 * glm::cross(pa, pb);
     l.second += glm::length(pb - pa);
   }
+  // A hole's width as its hydraulic diameter, 4 × area / perimeter: a square
+  // hole's side, a round one's diameter, a crack's gap (about 0 where faces meet).
   for (const auto& [root, l] : loops)
-    if (l.second > 0.0) o.widestGap = std::max(o.widestGap, glm::length(l.first) / (0.5 * l.second));
+    if (l.second > 0.0) o.widestGap = std::max(o.widestGap, 4.0 * glm::length(l.first) / l.second);
   return o;
 }
 

@@ -22,7 +22,11 @@
 
 namespace millsim {
 
-inline constexpr std::uint64_t kMaxMeshTriangles = 20'000'000;
+// Dental scans have a few hundred thousand to two million triangles; reading
+// one costs about 100 bytes a triangle on the way (corners, welding, edges).
+inline constexpr std::uint64_t kMaxMeshTriangles = 10'000'000;
+// Parts of one mesh (each is meshed on its own): enamel, dentin, pulp, …
+inline constexpr std::size_t kMaxMeshParts = 1000;
 
 struct MeshPart {
   std::string name;  // the OBJ group or object, the ASCII STL solid; else the file's stem
@@ -35,8 +39,10 @@ struct OpenEdges {
   std::size_t count = 0;
   glm::vec3 from{0.f}, to{0.f};  // the first one found
   // The largest hole: the open edges joined into loops, the widest loop's
-  // area / half its length — a crack between two faces that meet (a
-  // T-junction) is as wide as its faces are apart; a missing face, as wide as it was.
+  // hydraulic diameter (4 × its vector area / its length) — a crack between
+  // two faces that meet (a T-junction) is as wide as its faces are apart, a
+  // missing square face as wide as its side. It assumes the part's triangles
+  // wind one way round; mixed winding can make a hole look narrower.
   double widestGap = 0.0;
 };
 

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -78,10 +79,11 @@ Page pageOf(TIFF* t, const std::string& where) {
   TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photometric);
   if (samples != 1)
     throw VolumeError(where + " has " + std::to_string(samples) + " samples a pixel; a slice is one grey channel");
+  if (TIFFIsTiled(t)) throw VolumeError(where + " is a tiled TIFF; slices are read by rows: save them in strips");
   if (photometric != PHOTOMETRIC_MINISBLACK && photometric != PHOTOMETRIC_MINISWHITE)
     throw VolumeError(where + " is not greyscale (photometric " + std::to_string(photometric) + ")");
   const bool isFloat = format == SAMPLEFORMAT_IEEEFP;
-  if (!(bits == 8 || bits == 16 || (isFloat && bits == 32)))
+  if (isFloat ? bits != 32 : !(bits == 8 || bits == 16))
     throw VolumeError(where + " has " + std::to_string(bits) + "-bit pixels; slices are 8 or 16-bit integers (or 32-bit float)");
   if (w == 0 || h == 0 || w > (1u << 16) || h > (1u << 16))
     throw VolumeError(where + " is " + std::to_string(w) + " × " + std::to_string(h) + " pixels; expected 1 to 65536 a side");
@@ -93,6 +95,20 @@ Page pageOf(TIFF* t, const std::string& where) {
     if (unit == RESUNIT_INCH) p.pixelMm = 25.4 / double(xres);
   }
   return p;
+}
+
+std::string describe(const Page& p) {
+  return std::to_string(p.size.x) + " × " + std::to_string(p.size.y) + " pixels of " + std::to_string(p.bits) + "-bit " +
+         (p.isFloat ? "floats" : p.isSigned ? "signed integers" : "integers");
+}
+
+// The next page of a multi-page TIFF; false at the last. A directory that
+// cannot be read (a file cut inside its pages) is an error, not the end.
+bool nextPage(TIFF* t, const std::string& name) {
+  tiffMessage.clear();
+  const bool more = TIFFReadDirectory(t) != 0;
+  if (!tiffMessage.empty()) throw VolumeError(name + ": a page cannot be read (" + tiffMessage + "); is the file cut short?");
+  return more;
 }
 
 // One page's rows into the builder, as densities.
@@ -158,9 +174,14 @@ std::optional<double> pixelSizeFromLog(const fs::path& folder) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(folder, ec)) {
     if (asciiLower(e.path().extension().string()) != ".log" || !e.is_regular_file(ec)) continue;
-    std::ifstream in(e.path());
+    // A reconstruction log is a few kilobytes: read its first 64 KB, whatever the file is.
+    std::ifstream in(e.path(), std::ios::binary);
+    std::string text(64 * 1024, '\0');
+    in.read(text.data(), std::streamsize(text.size()));
+    text.resize(std::size_t(in.gcount()));
+    std::istringstream lines(text);
     std::string line;
-    for (int n = 0; n < 2000 && std::getline(in, line); ++n) {
+    while (std::getline(lines, line)) {
       const std::size_t at = line.find("Image Pixel Size (um)=");
       if (at == std::string::npos) continue;
       try {
@@ -227,13 +248,11 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
     slices = 0;
     do {
       const Page p = pageOf(first.get(), name + " page " + std::to_string(slices + 1));
-      if (p.size != shape.size || p.bits != shape.bits)
-        throw VolumeError(name + " page " + std::to_string(slices + 1) + " is " + std::to_string(p.size.x) + " × " +
-                          std::to_string(p.size.y) + " pixels of " + std::to_string(p.bits) + " bits; the first is " +
-                          std::to_string(shape.size.x) + " × " + std::to_string(shape.size.y) + " of " + std::to_string(shape.bits));
+      if (p.size != shape.size || p.bits != shape.bits || p.isFloat != shape.isFloat)
+        throw VolumeError(name + " page " + std::to_string(slices + 1) + " is " + describe(p) + "; the first is " + describe(shape));
       if (++slices > kMaxSlices)
         throw VolumeError(name + ": more than " + std::to_string(kMaxSlices) + " pages; MillSim reads at most that many");
-    } while (TIFFReadDirectory(first.get()));
+    } while (nextPage(first.get(), name));
     TIFFSetDirectory(first.get(), 0);
   }
 
@@ -255,16 +274,14 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
       TiffFile t = openTiff(files[i]);
       const Page p = pageOf(t.get(), files[i].string());
       if (p.size != shape.size || p.bits != shape.bits || p.isFloat != shape.isFloat)
-        throw VolumeError(files[i].string() + " is " + std::to_string(p.size.x) + " × " + std::to_string(p.size.y) +
-                          " pixels of " + std::to_string(p.bits) + " bits; the first slice, " + files[0].filename().string() +
-                          ", is " + std::to_string(shape.size.x) + " × " + std::to_string(shape.size.y) + " of " +
-                          std::to_string(shape.bits));
+        throw VolumeError(files[i].string() + " is " + describe(p) + "; the first slice, " + files[0].filename().string() +
+                          ", is " + describe(shape));
       readPage(t.get(), p, builder, files[i].string());
     }
   } else {
     std::size_t page = 0;
     do readPage(first.get(), pageOf(first.get(), name), builder, name + " page " + std::to_string(++page));
-    while (TIFFReadDirectory(first.get()));
+    while (nextPage(first.get(), name));
   }
   return builder.finish();
 }

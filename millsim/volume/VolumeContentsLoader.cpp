@@ -72,6 +72,11 @@ void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesys
         sink.error(list[i]->location(), "Tissue name '" + list[i]->name.get() + "' is used twice in one VolumeObject");
   std::unique_ptr<VoxelVolume> labels;
   std::string failures;
+  // A mesh labels itself by its parts, which Tissues name: a labelUrl beside it would mean other labels.
+  if (partLabels_ && !node.labelUrl.get().empty()) {
+    sink.error(node.location(), "VolumeObject has a labelUrl and a mesh url: a mesh's parts are its labels; drop the labelUrl");
+    return;
+  }
   for (const std::string& u : node.labelUrl.get()) {
     try {
       labels = std::make_unique<VoxelVolume>(isPhantomLabelsUrl(u) ? loadPhantomLabels(u) : loadVolume(u, base, 0.f).volume);
@@ -144,7 +149,7 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
       if (mesh.voxelSize < 0.0 && isMeshFile(u))
         throw VolumeError(u + ": a mesh is voxelised in cubic voxels; give voxelSize the same along x, y and z (it is " +
                           node.voxelSize.toString() + ")");
-      LoadedVolume loaded = loadVolume(u, base, node.airValue.get(), &mesh);
+      LoadedVolume loaded = loadVolume(u, base, node.airValue.get(), &mesh, override);
       const bool isMesh = loaded.labels.has_value();
       auto contents = std::make_unique<VoxelContents>(
           override != glm::dvec3(0.0) && !isMesh

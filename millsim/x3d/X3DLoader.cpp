@@ -239,9 +239,14 @@ private:
                     "IMPORT of '" + imported + "' from Inline '" + inlineName + "' ignored: " +
                         (!inl->load.get() ? std::string("the Inline is not loaded (load FALSE)")
                          : e != exports.end() ? "the node it exports is one MillSim skipped"
-                         : known.empty()      ? std::string("its file EXPORTs nothing")
+                         : known.empty()      ? std::string("its file EXPORTs nothing (or it did not load)")
                                               : "its file EXPORTs only " + known));
       doc.skippedDefs[name] = "could not be IMPORTed from Inline '" + inlineName + "'";
+      return;
+    }
+    if (doc.defs->count(name)) {
+      sink_.error(as ? locateAttr(doc, tag, "AS", loc) : locateAttr(doc, tag, "importedDEF", loc),
+                  "IMPORT names '" + name + "', which is already a DEF name of this file; give it another AS name");
       return;
     }
     (*doc.defs)[name] = e->second;
@@ -549,8 +554,7 @@ private:
     if (it == doc.defs->end() && doc.skippedDefs.count(name)) return nullptr;  // its DEF was skipped, with a warning
     if (it == doc.defs->end()) {
       // X3D needs the DEF first; browsers skip a USE that comes before it with a warning.
-      bool passed = false;
-      if (const xmlNode* later = name.empty() ? nullptr : laterDef(xmlDocGetRootElement(doc.xml), el, name, passed)) {
+      if (const xmlNode* later = name.empty() ? nullptr : laterDef(doc, el, name)) {
         sink_.warning(locateAttr(doc, tag, "USE", loc),
                       "USE '" + name + "' comes before its DEF (line " + std::to_string(xmlGetLineNo(later)) +
                           "); X3D needs the DEF first, so this USE is skipped");
@@ -575,17 +579,25 @@ private:
     return it->second;
   }
 
-  // The first element after `use` (in document order, from `el` on) whose
-  // DEF is `name`, or null; `passed` turns true once `use` is reached.
-  static const xmlNode* laterDef(const xmlNode* el, const xmlNode* use, const std::string& name, bool& passed) {
+  static void indexDefs(const xmlNode* el, Document::DefPositions& index) {
     for (; el; el = el->next) {
       if (el->type != XML_ELEMENT_NODE) continue;
-      if (el == use) passed = true;
-      if (const xmlAttr* def = findAttr(el, "DEF"); passed && def && def->children && def->children->content &&
-                                                    name == reinterpret_cast<const char*>(def->children->content))
-        return el;
-      if (const xmlNode* inner = laterDef(el->children, use, name, passed)) return inner;
+      const std::size_t at = index.order.size();
+      index.order[el] = at;
+      if (const xmlAttr* def = findAttr(el, "DEF"); def && def->children && def->children->content)
+        index.defs.emplace(reinterpret_cast<const char*>(def->children->content), std::make_pair(at, el));
+      if (nameOf(el) != "ProtoDeclare") indexDefs(el->children, index);
     }
+  }
+  // The first element after `use` whose DEF is `name`, or null.
+  const xmlNode* laterDef(Document& doc, const xmlNode* use, const std::string& name) {
+    Document::DefPositions& index = doc.defPositions;
+    if (index.order.empty()) indexDefs(xmlDocGetRootElement(doc.xml), index);
+    const auto at = index.order.find(use);
+    if (at == index.order.end()) return nullptr;
+    const auto [from, to] = index.defs.equal_range(name);
+    for (auto it = from; it != to; ++it)
+      if (it->second.first > at->second) return it->second.second;
     return nullptr;
   }
 

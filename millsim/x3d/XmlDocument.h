@@ -42,6 +42,14 @@ struct Document {
   // DEF name -> why its node was skipped ("is a ProximitySensor, which MillSim
   // does not support"): a USE or ROUTE of one is skipped too, saying so.
   std::map<std::string, std::string, std::less<>> skippedDefs;
+  // Each element's place in document order and where each DEF name is (not
+  // inside ProtoDeclares, whose names are their own): made on the file's first
+  // USE of a name not defined yet, to tell a USE before its DEF from a typo.
+  struct DefPositions {
+    std::map<const xmlNode*, std::size_t> order;
+    std::multimap<std::string, std::pair<std::size_t, const xmlNode*>, std::less<>> defs;
+  };
+  DefPositions defPositions;
   // Its EXPORT statements: the name an importer uses -> the node (X3D 4.0 §4.4.6).
   std::map<std::string, std::shared_ptr<Node>, std::less<>> exports;
   // Where each element's start tag begins, once found. A ProtoBody is read

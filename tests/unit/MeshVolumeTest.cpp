@@ -277,7 +277,14 @@ TEST(MeshVolume, AnOpenPartIsNamedWithItsOpenEdges) {
   const auto file = writeFile(dir, "parts.stl", asciiStl({{"base", box({-5, -5, -5}, {-3, -3, -3})}, {"lid", lid}}));
   const std::string e = errorOf([&] { loadMeshVolume(file, inMillimetres(0.1)); });
   EXPECT_NE(e.find("parts.stl: part 'lid' is not closed: 4 open edges"), std::string::npos) << e;
-  EXPECT_NE(e.find("the widest hole 1.2 mm across"), std::string::npos) << e;
+  EXPECT_NE(e.find("the widest hole 2.4 mm across"), std::string::npos) << e;  // 4 × 6 mm² / 10 mm
+}
+
+// 1001 groups of one triangle each: more parts than MillSim voxelises.
+std::string manyGroups() {
+  std::string s = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (int g = 0; g <= 1000; ++g) s += "g part" + std::to_string(g) + "\nf 1 2 3\n";
+  return s;
 }
 
 TEST(MeshVolume, HostileFilesAreRefusedWithTheReason) {
@@ -299,6 +306,13 @@ TEST(MeshVolume, HostileFilesAreRefusedWithTheReason) {
        "huge.ply: 900000000 vertex elements, too many to voxelise"},
       {"endless.ply", "ply\nformat ascii 1.0\n" + std::string(2 << 20, ' '), "line 3 of the PLY header is longer than 1048576 bytes"},
       {"empty.obj", "# nothing\n", "empty.obj: no faces"},
+      {"floatindex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                         "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "floatindex.ply: the PLY face list 'vertex_indices' holds floating-point values"},
+      {"badline.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n",
+       "badline.ply:11: value 'x' is not a number"},
+      {"groups.obj", manyGroups(), "more than 1000 groups"},
   };
   for (const Case& c : cases) {
     const auto file = writeFile(dir, c.name, c.bytes);

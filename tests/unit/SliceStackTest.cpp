@@ -135,7 +135,7 @@ TEST(SliceStack, BadStacksAreRefusedNamingTheFile) {
   fs::create_directories(dir.path() / "sizes");
   writeSlice(dir.path() / "sizes" / "a1.tif", 0, 0.05);
   writeSlice(dir.path() / "sizes" / "a2.tif", 1, 0.05, kW + 3);
-  EXPECT_NE(errorOf(dir.path() / "sizes").find("a2.tif is 23 × 16 pixels of 16 bits; the first slice, a1.tif, is 20 × 16 of 16"),
+  EXPECT_NE(errorOf(dir.path() / "sizes").find("a2.tif is 23 × 16 pixels of 16-bit integers; the first slice, a1.tif, is 20 × 16 pixels of 16-bit integers"),
             std::string::npos)
       << errorOf(dir.path() / "sizes");
 
@@ -159,6 +159,14 @@ TEST(SliceStack, AVolumeObjectLoadsAFolderOfSlices) {
   ScratchDir dir;
   fs::create_directories(dir.path() / "scan");
   for (int z = 0; z < kSlices; ++z) writeSlice(dir.path() / "scan" / ("s" + std::to_string(z) + ".tif"), z, 0.05);
+  // Unsized slices take the VolumeObject's voxelSize.
+  fs::create_directories(dir.path() / "unsized");
+  for (int z = 0; z < 3; ++z) writeSlice(dir.path() / "unsized" / ("u" + std::to_string(z) + ".tif"), z, 0.0);
+  LoadResult u = loadSceneFile(
+      dir.write("u.x3d", x3d(R"(<VolumeObject DEF="U" url='"unsized"' voxelSize="0.00002 0.00002 0.00002" isoValue="20000"/>)")),
+      builtinRegistry());
+  ASSERT_TRUE(u.ok()) << u.report();
+  EXPECT_NEAR(dynamic_cast<const VolumeObject*>(u.scene->def("U").get())->voxelEdge(), 20e-6, 1e-12);
   LoadResult r = loadSceneFile(
       dir.write("s.x3d", x3d(R"(<VolumeObject DEF="V" url='"scan"' isoValue="20000" airValue="-1000"/>)")), builtinRegistry());
   ASSERT_TRUE(r.ok()) << r.report();
