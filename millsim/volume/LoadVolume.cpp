@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <map>
+#include <set>
 #include <string>
 
 #include "millsim/volume/MeshVolume.h"
@@ -86,14 +88,9 @@ bool holdsTiffSlices(const fs::path& folder) {
   return tiff;
 }
 
-}  // namespace
-
-LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue, const MeshVoxelOptions* mesh,
-                        glm::dvec3 voxelSize) {
-  if (url.empty()) throw VolumeError("(empty url): no volume file given (expected " + std::string(kSupported) + ")");
+// A local url (a path, file:///path or file:path) as a path, relative ones against baseDir.
+fs::path localVolumePath(const std::string& url, const fs::path& baseDir) {
   const std::string scheme = urlScheme(url);
-  if (scheme == "phantom") return LoadedVolume{makeToothPhantom(parsePhantomUrl(url)), "phantom", url};
-
   std::string pathText = url;
   if (scheme == "file") {
     // file:///abs/path or file:relative/path
@@ -112,10 +109,65 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
     throw VolumeError(url + ": '" + scheme + ":' urls are not supported; volumes are read from local files only (" +
                       kSupported + ")");
   }
-
   fs::path path(pathText);
   if (path.is_relative() && !baseDir.empty()) path = baseDir / path;
-  path = path.lexically_normal();
+  return path.lexically_normal();
+}
+
+// What `check` says of a voxelised mesh: format, parts, unit, size, voxels.
+std::string meshAccount(const MeshVolume& m, const MeshVoxelOptions& mesh) {
+  std::string account = m.format + ", " + std::to_string(m.parts.size()) + (m.parts.size() == 1 ? " part" : " parts");
+  for (std::size_t i = 0; i < m.parts.size(); ++i)
+    account += std::string(i ? ", '" : " ('") + m.parts[i] + "' " + std::to_string(m.triangles[i]) + " triangles" +
+               (i + 1 == m.parts.size() ? ")" : "");
+  const glm::dvec3 mm = m.size * 1e3;
+  return account + ", " + fmt(mesh.unit) + " m per unit of the file (the format carries none, meshUnit says it): " +
+         fmt(mm.x) + " × " + fmt(mm.y) + " × " + fmt(mm.z) + " mm, voxelised at " + fmt(mesh.voxelSize * 1e3) +
+         " mm into " + std::to_string(m.density.dims().x) + " × " + std::to_string(m.density.dims().y) + " × " +
+         std::to_string(m.density.dims().z) + " voxels";
+}
+
+void requireVoxelSize(const std::string& name, const MeshVoxelOptions* mesh) {
+  if (!mesh || !(mesh->voxelSize > 0.0))
+    throw VolumeError(name + ": a surface mesh has no voxels; the VolumeObject's voxelSize says how fine to voxelise "
+                             "it (e.g. voxelSize='0.00005 0.00005 0.00005' for 50 µm)");
+}
+
+}  // namespace
+
+LoadedVolume loadMeshParts(const std::vector<std::string>& urls, const fs::path& baseDir, const MeshVoxelOptions& mesh) {
+  std::string names;
+  for (const std::string& u : urls) names += (names.empty() ? "" : " + ") + u;
+  requireVoxelSize(names, &mesh);
+  SurfaceMesh all;
+  std::map<std::string, std::string> partFile;  // part name → the file that has it
+  std::set<std::string> formats;
+  for (const std::string& u : urls) {
+    const fs::path path = localVolumePath(u, baseDir);
+    SurfaceMesh m = readSurfaceMesh(path);
+    formats.insert(m.format);
+    // A file of one part is the part of its name (enamel.stl: 'enamel'); a file of several keeps its parts' names.
+    if (m.parts.size() == 1) m.parts[0].name = path.stem().string();
+    for (MeshPart& p : m.parts) {
+      if (const auto [it, added] = partFile.emplace(p.name, path.string()); !added)
+        throw VolumeError(path.string() + ": part '" + p.name + "' is a part of " + it->second +
+                          " too; each part of a VolumeObject needs its own name");
+      if (all.parts.size() == kMaxMeshParts)
+        throw VolumeError(names + ": more than " + std::to_string(kMaxMeshParts) + " parts; MillSim voxelises at most that many");
+      all.parts.push_back(std::move(p));
+    }
+  }
+  for (const std::string& f : formats) all.format += (all.format.empty() ? "" : " and ") + f;
+  MeshVolume v = voxeliseMesh(all, names, mesh);
+  const std::string account = meshAccount(v, mesh);
+  return LoadedVolume{std::move(v.density), v.format, names, std::move(v.labels), std::move(v.parts), account};
+}
+
+LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float airValue, const MeshVoxelOptions* mesh,
+                        glm::dvec3 voxelSize) {
+  if (url.empty()) throw VolumeError("(empty url): no volume file given (expected " + std::string(kSupported) + ")");
+  if (urlScheme(url) == "phantom") return LoadedVolume{makeToothPhantom(parsePhantomUrl(url)), "phantom", url};
+  const fs::path path = localVolumePath(url, baseDir);
   const std::string name = path.string();
   if (isSliceStackPattern(name)) return LoadedVolume{readSliceStack(path, airValue, voxelSize), "slices", name};
   std::error_code ec;
@@ -135,21 +187,10 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   if (ext == ".vti") return LoadedVolume{readVti(path, airValue), "vti", name};
   if (isTiffFile(path)) return LoadedVolume{readSliceStack(path, airValue, voxelSize), "slices", name};
   if (isMeshFile(path)) {
-    if (!mesh || !(mesh->voxelSize > 0.0))
-      throw VolumeError(name + ": a surface mesh has no voxels; the VolumeObject's voxelSize says how fine to voxelise "
-                               "it (e.g. voxelSize='0.00005 0.00005 0.00005' for 50 µm)");
+    requireVoxelSize(name, mesh);
     MeshVolume m = loadMeshVolume(path, *mesh);
-    std::string account = m.format + ", " + std::to_string(m.parts.size()) + (m.parts.size() == 1 ? " part" : " parts");
-    for (std::size_t i = 0; i < m.parts.size(); ++i)
-      account += std::string(i ? ", '" : " ('") + m.parts[i] + "' " + std::to_string(m.triangles[i]) + " triangles" +
-                 (i + 1 == m.parts.size() ? ")" : "");
-    const glm::dvec3 mm = m.size * 1e3;
-    account += ", " + fmt(mesh->unit) + " m per unit of the file (the format carries none, meshUnit says it): " +
-               fmt(mm.x) + " × " + fmt(mm.y) + " × " + fmt(mm.z) + " mm, voxelised at " + fmt(mesh->voxelSize * 1e3) +
-               " mm into " + std::to_string(m.density.dims().x) + " × " + std::to_string(m.density.dims().y) + " × " +
-               std::to_string(m.density.dims().z) + " voxels";
-    LoadedVolume loaded{std::move(m.density), m.format, name, std::move(m.labels), std::move(m.parts), account};
-    return loaded;
+    const std::string account = meshAccount(m, *mesh);
+    return LoadedVolume{std::move(m.density), m.format, name, std::move(m.labels), std::move(m.parts), account};
   }
   if (ext == ".dcm" || ext == ".dicom" || (ext.empty() && hasDicomMagic(path)))
     return LoadedVolume{readDicom(path, airValue), "dicom", name};

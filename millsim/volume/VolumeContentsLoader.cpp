@@ -144,12 +144,15 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
     else if (t->soft.get() && !t->byDensity()) mesh.softLabels.insert(t->label.get());
   std::string failures;
   std::vector<std::string> failed;
-  for (const std::string& u : node.url.get()) {
+  // Several mesh urls are the parts of one volume (enamel.stl, dentin.stl, pulp.stl), not fallbacks.
+  const auto& urls = node.url.get();
+  const bool meshParts = urls.size() > 1 && std::all_of(urls.begin(), urls.end(), [](const std::string& u) { return isMeshFile(u); });
+  for (const std::string& u : meshParts ? std::vector<std::string>{urls.front()} : urls) {
     try {
       if (mesh.voxelSize < 0.0 && isMeshFile(u))
         throw VolumeError(u + ": a mesh is voxelised in cubic voxels; give voxelSize the same along x, y and z (it is " +
                           node.voxelSize.toString() + ")");
-      LoadedVolume loaded = loadVolume(u, base, node.airValue.get(), &mesh, override);
+      LoadedVolume loaded = meshParts ? loadMeshParts(urls, base, mesh) : loadVolume(u, base, node.airValue.get(), &mesh, override);
       const bool isMesh = loaded.labels.has_value();
       auto contents = std::make_unique<VoxelContents>(
           override != glm::dvec3(0.0) && !isMesh
@@ -160,7 +163,7 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
         contents->setParts(std::move(*loaded.labels), loaded.parts);
         sink.note(node.location(), "VolumeObject " + u + ": " + loaded.account);
       }
-      node.loadedUrl.set(u);
+      node.loadedUrl.set(meshParts ? loaded.source : u);
       // A fallback url loaded: say why each earlier one did not.
       for (const std::string& f : failed)
         sink.note(node.location(), "VolumeObject url failed, a later one was used: " + f);

@@ -53,6 +53,10 @@ VoxelVolume readDicom(const std::filesystem::path& fileOrFolder, float airValue)
 // tags; slices are as far apart as pixels are wide. Values are the densities.
 VoxelVolume readSliceStack(const std::filesystem::path& folderPatternOrTiff, float airValue,
                            glm::dvec3 voxelSize = glm::dvec3(0.0));
+// Several surface meshes voxelised together as the parts of one volume (a
+// file of one part is the part of its stem's name: enamel.stl is 'enamel').
+LoadedVolume loadMeshParts(const std::vector<std::string>& urls, const std::filesystem::path& baseDir,
+                           const MeshVoxelOptions& mesh);
 // True for a path with one printf integer field (%d, %04d): a slice-stack pattern.
 bool isSliceStackPattern(const std::string& path);
 

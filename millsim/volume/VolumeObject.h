@@ -30,7 +30,8 @@ public:
                "slices/img_%04d.tif, or one multi-page .tif; the pixel size from voxelSize, a SkyScan .log or the "
                "TIFF tags), phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1] (in an X3D file each & is written "
                "&amp;), or a closed surface mesh (.stl, .obj, .ply: its parts, an OBJ's groups or an STL's solids, "
-               "become labels Tissues name) voxelised at voxelSize. Every density must be a finite number."};
+               "become labels Tissues name) voxelised at voxelSize; several mesh urls are the parts of one volume "
+               "(enamel.stl is the part 'enamel'), not fallbacks. Every density must be a finite number."};
   SFFloat isoValue{this, "isoValue", Access::InitializeOnly, 700.f,
                    "Density above which a point is inside the object (Hounsfield-like units).", Range::closed(-1e9, 1e9)};
   SFFloat airValue{this, "airValue", Access::InitializeOnly, -1000.f,

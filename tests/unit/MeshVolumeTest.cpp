@@ -24,6 +24,7 @@
 
 using namespace millsim;
 using namespace millsim::test;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -357,6 +358,34 @@ TEST(MeshVolumeScene, TissuesChooseThePartsByName) {
   EXPECT_EQ(tissues->voxelCounts()[0], 0u) << "no material is left unclassified";
   EXPECT_TRUE(tissues->soft(3));
   EXPECT_FALSE(tissues->soft(2));
+}
+
+// Several mesh urls are the parts of one volume, each named by its file.
+TEST(MeshVolumeScene, SeveralMeshUrlsAreThePartsOfOneVolume) {
+  ScratchDir dir;
+  writeFile(dir, "enamel.stl", binaryStl(sphere(3.0, 3)));
+  writeFile(dir, "pulp.stl", binaryStl(sphere(1.0, 3)));
+  LoadResult r = loadSceneFile(dir.write("two.x3d", x3d(R"(
+    <VolumeObject DEF="Tooth" url='"enamel.stl" "pulp.stl"' voxelSize="0.0001 0.0001 0.0001" meshUnit="0.001">
+      <Tissue name="enamel"/><Tissue name="pulp" soft="true"/>
+    </VolumeObject>)")),
+                               builtinRegistry());
+  ASSERT_TRUE(r.ok()) << r.report();
+  const auto* volume = dynamic_cast<const VolumeObject*>(r.scene->def("Tooth").get());
+  ASSERT_NE(volume, nullptr);
+  EXPECT_EQ(volume->loadedUrl.get(), "enamel.stl + pulp.stl");
+  const TissueMap* tissues = volume->tissueMap();
+  ASSERT_NE(tissues, nullptr);
+  EXPECT_GT(tissues->voxelCounts()[1], 10000u) << "enamel";
+  EXPECT_GT(tissues->voxelCounts()[2], 1000u) << "pulp";
+  EXPECT_TRUE(tissues->soft(2));
+
+  fs::create_directories(dir.path() / "other");
+  writeFile(dir, "other/enamel.stl", binaryStl(sphere(2.0, 2)));
+  LoadResult twice = loadSceneFile(dir.write("twice.x3d", x3d(R"(
+    <VolumeObject url='"enamel.stl" "other/enamel.stl"' voxelSize="0.0001 0.0001 0.0001" meshUnit="0.001"/>)")),
+                                   builtinRegistry());
+  EXPECT_NE(twice.report().find("other/enamel.stl: part 'enamel' is a part of"), std::string::npos) << twice.report();
 }
 
 TEST(MeshVolumeScene, MistakesAreClearErrors) {
