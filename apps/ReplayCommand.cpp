@@ -12,6 +12,7 @@
 #include "NumberArgs.h"
 #include "TrajectoryReach.h"
 #include "RunSummary.h"
+#include "SaveMesh.h"
 #include "SaveVolume.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/session/Session.h"
@@ -23,7 +24,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("replay", "Replay a trajectory through the scene's haptics renderer (deterministic)");
   struct Args {
     bool strict = false;
-    std::string scene, trajectory, log, soundOut, saveVolume, report;
+    std::string scene, trajectory, log, soundOut, saveVolume, saveMesh, report;
     struct {
       std::string renderer;
       double rate = 0.0;
@@ -45,6 +46,9 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       ->check(finiteIn(1, 20000, "Hz (the range of desiredHapticsRate)"));
   cmd->add_option("--save-volume", args->saveVolume,
                   "At the end, write the milled volume to this .vdb file (a VolumeObject url loads it back)");
+  cmd->add_option("--save-mesh", args->saveMesh,
+                  "At the end, write the milled surface in millimetres: .stl the whole, .obj (with an .mtl) or "
+                  ".ply a solid per tissue in its colour (a VolumeObject url loads it back with meshUnit='0.001')");
   cmd->add_option("--report", args->report,
                   "Write the lesson report (JSON: removed volume, peak force, targets, forbidden regions, score)");
   cmd->add_flag("--timing", args->options.timing,
@@ -62,6 +66,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       if (!args->saveVolume.empty()) checkSaveVolume(*r.scene, args->saveVolume);
+      if (!args->saveMesh.empty()) checkSaveMesh(*r.scene, args->saveMesh);
       if (!args->report.empty()) checkWritable(args->report, "--report");
       // A trajectory, or a run's frame log: that replays the run's own frames (review).
       const std::string text = readTrajectoryText(args->trajectory);
@@ -91,7 +96,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       if (log.is_open()) log.close();
       printReplaySummary(std::cout, s, o.timing);
       result = finishOutputs(std::cout, std::cerr, s, *r.scene,
-                             {"replay", args->scene, args->log, args->report, args->saveVolume}, !log.fail());
+                             {"replay", args->scene, args->log, args->report, args->saveVolume, args->saveMesh}, !log.fail());
       return;
     } catch (const std::exception& e) {
       std::cerr << "millsim replay: error: " << e.what() << "\n";

@@ -15,6 +15,7 @@
 #include "NumberArgs.h"
 #include "TrajectoryReach.h"
 #include "RunSummary.h"
+#include "SaveMesh.h"
 #include "SaveVolume.h"
 #include "millsim/core/NodeRegistry.h"
 #include "millsim/graphics/GraphicsError.h"
@@ -33,7 +34,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
   struct Args {
     bool strict = false, noGraphics = false, noWindow = false, noSound = false;
-    std::string scene, log, trajectory, device, size, soundOut, saveVolume, report;
+    std::string scene, log, trajectory, device, size, soundOut, saveVolume, saveMesh, report;
     double duration = 0.0;
     SessionOptions session;
   };
@@ -64,6 +65,9 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   cmd->add_flag("--no-sound", args->noSound, "Do not play the milling sound live");
   cmd->add_option("--save-volume", args->saveVolume,
                   "At the end, write the milled volume to this .vdb file (a VolumeObject url loads it back)");
+  cmd->add_option("--save-mesh", args->saveMesh,
+                  "At the end, write the milled surface in millimetres: .stl the whole, .obj (with an .mtl) or "
+                  ".ply a solid per tissue in its colour (a VolumeObject url loads it back with meshUnit='0.001')");
   cmd->add_option("--report", args->report,
                   "At the end, write the lesson report (JSON: removed volume, peak force, targets, forbidden "
                   "regions, score)");
@@ -81,6 +85,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     try {
       if (!args->soundOut.empty()) checkWritable(args->soundOut, "--sound-out");
       if (!args->saveVolume.empty()) checkSaveVolume(*r.scene, args->saveVolume);
+      if (!args->saveMesh.empty()) checkSaveMesh(*r.scene, args->saveMesh);
       if (!args->report.empty()) checkWritable(args->report, "--report");
       if (args->noGraphics && !o.screenshot.empty())
         throw std::invalid_argument("--screenshot needs graphics; drop --no-graphics");
@@ -148,7 +153,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     }
     if (log.is_open()) log.close();
     printRunSummary(std::cout, s);
-    result = finishOutputs(std::cout, std::cerr, s, *r.scene, {"run", args->scene, args->log, args->report, args->saveVolume},
+    result = finishOutputs(std::cout, std::cerr, s, *r.scene, {"run", args->scene, args->log, args->report, args->saveVolume, args->saveMesh},
                            !log.fail());
   });
 }

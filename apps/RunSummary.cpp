@@ -6,6 +6,7 @@
 #include <iomanip>
 
 #include "Commands.h"
+#include "SaveMesh.h"
 #include "SaveVolume.h"
 #include "millsim/std/WorldInfo.h"
 
@@ -79,6 +80,7 @@ int finishOutputs(std::ostream& out, std::ostream& err, const SessionResult& s, 
       out << describeReport(report, false) << "  report written to " << o.report << "\n";
     }
     if (!o.saveVolume.empty()) out << saveVolume(scene, o.saveVolume);
+    if (!o.saveMesh.empty()) out << saveMesh(scene, o.saveMesh);
   } catch (const std::exception& e) {
     err << prefix << e.what() << "\n";
     return kExitFailure;

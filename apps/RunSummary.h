@@ -1,7 +1,7 @@
 #pragma once
 // What `millsim run` and `millsim replay` print and write after a Session:
 // the statistics, the sound and graphics lines, the lesson report, the saved
-// volume, and the errors; returns the command's exit code.
+// volume and mesh, and the errors; returns the command's exit code.
 #include <ostream>
 #include <string>
 
@@ -21,12 +21,12 @@ void printReplaySummary(std::ostream& os, const SessionResult& s, bool timing);
 struct RunOutputs {
   std::string verb;       // "run" or "replay", for the messages
   std::string sceneFile;
-  std::string log, report, saveVolume;  // empty: not asked for
+  std::string log, report, saveVolume, saveMesh;  // empty: not asked for
 };
 
 // After the session (the log stream closed by the caller, `logOk` whether it
-// was written): prints the sound and graphics lines, writes the report and
-// the saved volume, prints every error. kExitOk, or kExitFailure.
+// was written): prints the sound and graphics lines, writes the report,
+// the saved volume and mesh, prints every error. kExitOk, or kExitFailure.
 int finishOutputs(std::ostream& out, std::ostream& err, const SessionResult& s, const Scene& scene,
                   const RunOutputs& outputs, bool logOk);
 
