@@ -13,6 +13,7 @@
 #include "Commands.h"
 #include "measure/Accuracy.h"
 #include "measure/Physical.h"
+#include "measure/PhysicalScenes.h"
 #include "measure/Procedure.h"
 #include "measure/Rates.h"
 #include "measure/ZWidth.h"
@@ -139,6 +140,7 @@ struct PhysicalArgs {
   std::vector<double> voxelMm{0.2, 0.1, 0.05};
   double sweepVoxelMm = 0.0;  // > 0: also each resolution field's values at this voxel size
   std::vector<std::string> sets;  // FIELD=VALUE overrides of the renderers' defaults
+  std::vector<std::string> scenes;  // empty: the suite's set
   bool quick = false, ownLaw = true;
   std::string csv, md, poses;
 };
@@ -181,6 +183,7 @@ std::string sceneForceOrders(const std::vector<PhysicalRow>& rows) {
 // physical error that docs/results.md plots).
 int runPhysical(const PhysicalArgs& a) {
   PhysicalConfig cfg;
+  cfg.scenes = a.scenes;
   AccuracyConfig own;
   if (a.quick) cfg.phases = 1, own.depths = 3, own.tiltsDeg = {0, 30, 60}, own.phases = 1, own.settleFrames = 10;
   std::ofstream poses;
@@ -467,6 +470,11 @@ void addBenchCommand(CLI::App& app, int& result) {
   phys->add_option("--set", ph->sets,
                    "FIELD=VALUE: set a field of the renderers measured (repeatable), e.g. contactStiffness=10000; "
                    "the rows are labelled with the defaults' names");
+  phys->add_option("--scene", ph->scenes,
+                   "Physical scene (repeatable; default: half-space, ball, bowl, edge, plate, shaft-on-edge, hole); "
+                   "mesh-ball is the ball voxelised from a 20 480-triangle mesh, as a mesh url is")
+      ->check(CLI::Validator([](std::string& v) { return isPhysicalSceneName(v) ? std::string() : "unknown physical scene '" + v + "'"; },
+                             "SCENE"));
   phys->add_flag("--quick", ph->quick, "One sub-voxel phase, and the quick own-law run");
   phys->add_flag("!--no-own-law", ph->ownLaw, "Skip the own-law column (bench accuracy's figure)");
   phys->add_option("--csv", ph->csv, "Write every row (per scene and 'all') as CSV");

@@ -7,6 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "millsim/volume/MeshVolume.h"
+
 namespace millsim::measure {
 
 Shape halfSpace(glm::dvec3 lo, glm::dvec3 hi) {
@@ -55,6 +57,23 @@ std::unique_ptr<AnalyticScene> voxelise(const Shape& shape, double h) {
   out->volume = std::make_unique<VoxelVolume>(VoxelVolume::fromDense(v.data(), n, glm::dvec3(h), 0.f));
   // Voxel i is at local (i − (n−1)/2)·h: translate the centre to the box centre.
   out->localToWorld = glm::translate(glm::dmat4(1.0), lo + glm::dvec3(n - 1) * (0.5 * h));
+  out->scene = std::make_unique<VoxelScene>();
+  out->scene->addVolume(*out->volume, out->localToWorld, kIso);
+  return out;
+}
+
+std::unique_ptr<AnalyticScene> voxeliseMesh(const Shape& shape, const SurfaceMesh& mesh, double h) {
+  MeshVoxelOptions o;
+  o.voxelSize = h;
+  o.isoValue = kIso;  // air 0, material 2 · kIso = 1000: the analytic scenes' densities
+  o.airValue = 0.f;
+  MeshVolume voxels = voxeliseMesh(mesh, "the " + shape.name + " mesh", o);
+  auto out = std::make_unique<AnalyticScene>();
+  out->shape = shape;
+  out->h = h;
+  out->volume = std::make_unique<VoxelVolume>(std::move(voxels.density));
+  // Voxel centres on h·ℤ³ of the mesh's coordinates, as voxelise() puts them.
+  out->localToWorld = glm::translate(glm::dmat4(1.0), voxels.centre);
   out->scene = std::make_unique<VoxelScene>();
   out->scene->addVolume(*out->volume, out->localToWorld, kIso);
   return out;

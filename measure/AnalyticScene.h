@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "millsim/volume/MeshFile.h"
 #include "millsim/volume/VoxelScene.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -47,5 +48,10 @@ struct AnalyticScene {
   glm::dmat4 localToWorld{1.0};
 };
 std::unique_ptr<AnalyticScene> voxelise(const Shape& shape, double h);
+// The shape as a scene author's mesh url gives it: `mesh` (in metres)
+// voxelised at h by MeshVolume (millsim/volume/MeshVolume.h), whose coverage
+// ramp is the same ½ − d/h; the iso-surface at kIso again. `shape` is kept
+// for the reference.
+std::unique_ptr<AnalyticScene> voxeliseMesh(const Shape& shape, const SurfaceMesh& mesh, double h);
 
 }  // namespace millsim::measure

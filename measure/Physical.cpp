@@ -81,7 +81,7 @@ std::vector<PhysicalRow> measurePhysical(const RendererSpec& spec, double h, con
   Samples all;
   for (const std::string& name : names) {
     const PhysicalScene ps = physicalScene(name);
-    auto scene = voxelise(ps.shape, h);
+    auto scene = voxelisePhysical(ps, h);
     Samples s;
     for (const PhysicalProbe& probe : physicalProbes(ps, tool, h, cfg.phases)) {
       const PhysicalPose found = constrainedPose(ps.material, tool, probe.device, {k, kr});

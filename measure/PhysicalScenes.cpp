@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
@@ -55,9 +56,11 @@ PhysicalScene physicalScene(const std::string& name) {
     Shape s = halfSpace({-3e-3, -2e-3, -3e-3}, {3e-3, 1.5e-3, 3e-3});
     return {name, s, one(s)};
   }
-  if (name == "ball") {
+  if (name == "ball" || name == "mesh-ball") {
     Shape s = ball(kBallR);
-    return {name, s, one(s)};
+    PhysicalScene out{name, s, one(s)};
+    out.fromMesh = name == "mesh-ball";
+    return out;
   }
   if (name == "bowl") {
     Shape s{"bowl", bowlDistance, {-3.5e-3, -3.5e-3, -3.5e-3}, {3.5e-3, 1e-3, 3.5e-3}};
@@ -80,7 +83,51 @@ PhysicalScene physicalScene(const std::string& name) {
     return {name, s, Material{{Fn(holeWallDistance), Fn(holeBottomDistance)}}};
   }
   throw std::runtime_error("unknown physical scene '" + name +
-                           "' (half-space, ball, bowl, edge, plate, shaft-on-edge, hole)");
+                           "' (half-space, ball, bowl, edge, plate, shaft-on-edge, hole; mesh-ball)");
+}
+
+bool isPhysicalSceneName(const std::string& name) {
+  const std::vector<std::string> names = physicalSceneNames();
+  return name == "mesh-ball" || std::find(names.begin(), names.end(), name) != names.end();
+}
+
+MeshPart icosphere(double R, int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<glm::dvec3> v;
+  for (const glm::dvec3& p : {glm::dvec3(-1, t, 0), {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}})
+    v.push_back(glm::normalize(p));
+  std::vector<glm::uvec3> f{{0, 11, 5}, {0, 5, 1}, {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                            {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<unsigned, unsigned>, unsigned> middle;
+    auto mid = [&](unsigned a, unsigned b) {
+      const auto key = std::minmax(a, b);
+      if (const auto it = middle.find(key); it != middle.end()) return it->second;
+      v.push_back(glm::normalize(v[a] + v[b]));
+      return middle[key] = unsigned(v.size() - 1);
+    };
+    std::vector<glm::uvec3> next;
+    for (const glm::uvec3& g : f) {
+      const unsigned ab = mid(g.x, g.y), bc = mid(g.y, g.z), ca = mid(g.z, g.x);
+      next.insert(next.end(), {{g.x, ab, ca}, {g.y, bc, ab}, {g.z, ca, bc}, {ab, bc, ca}});
+    }
+    f = std::move(next);
+  }
+  MeshPart part;
+  part.name = "ball";
+  for (const glm::dvec3& p : v) part.vertices.push_back(glm::vec3(R * p));
+  part.triangles = std::move(f);
+  return part;
+}
+
+std::unique_ptr<AnalyticScene> voxelisePhysical(const PhysicalScene& scene, double h) {
+  if (!scene.fromMesh) return voxelise(scene.shape, h);
+  SurfaceMesh mesh;
+  mesh.format = "test";
+  mesh.parts.push_back(icosphere(kBallR, 5));
+  return voxeliseMesh(scene.shape, mesh, h);
 }
 
 std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const ToolGeometry& tool, double h, int phases) {
@@ -117,7 +164,7 @@ std::vector<PhysicalProbe> physicalProbes(const PhysicalScene& scene, const Tool
     glm::dvec3 n, contact;  // outward normal of the material and the touched surface point
     if (scene.name == "half-space") n = {0, 1, 0}, contact = {0, 0, 0};
     else if (scene.name == "plate") n = {0, 1, 0}, contact = {0, 0.5 * kPlate, 0};
-    else if (scene.name == "ball") n = glm::normalize(glm::dvec3(0.3, 1.0, 0.2)), contact = kBallR * n;
+    else if (scene.name == "ball" || scene.name == "mesh-ball") n = glm::normalize(glm::dvec3(0.3, 1.0, 0.2)), contact = kBallR * n;
     else if (scene.name == "bowl") n = -glm::normalize(glm::dvec3(0.35, -1.0, 0.0)), contact = -kBowlR * n;
     else if (scene.name == "edge") n = glm::normalize(glm::dvec3(1.0, 1.0, 0.0)), contact = {0, 0, 0};
     else throw std::runtime_error("no probes for scene '" + scene.name + "'");

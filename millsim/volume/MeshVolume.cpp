@@ -45,7 +45,7 @@ MeshVolume voxeliseMesh(const SurfaceMesh& mesh, const std::string& name, const 
   }
 
   MeshVolume out{VoxelVolume(VoxelVolume::Grid::create(o.airValue), glm::ivec3(1), glm::dvec3(h), o.airValue),
-                 VoxelVolume(VoxelVolume::Grid::create(0.f), glm::ivec3(1), glm::dvec3(h), 0.f), {}, {}, {}, {}, mesh.format};
+                 VoxelVolume(VoxelVolume::Grid::create(0.f), glm::ivec3(1), glm::dvec3(h), 0.f), {}, {}, {}, {}, {}, mesh.format};
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (const MeshPart& part : mesh.parts) {
     out.parts.push_back(part.name);
@@ -54,9 +54,13 @@ MeshVolume voxeliseMesh(const SurfaceMesh& mesh, const std::string& name, const 
     for (const glm::vec3& v : part.vertices) lo = glm::min(lo, glm::dvec3(v) * unit), hi = glm::max(hi, glm::dvec3(v) * unit);
   }
   out.size = hi - lo;
-  // Three voxels of air round the mesh: the distance band and the coverage ramp fit inside the box.
+  // Voxel centres on the lattice of multiples of h in the mesh's own
+  // coordinates, not on its bounding box: how a shape is sampled does not
+  // then depend on where its box ends, and meshes in one frame (a trainee's
+  // preparation and the ideal one) voxelise onto the same lattice. Three
+  // voxels of air round the mesh: the distance band and the coverage ramp fit inside the box.
   constexpr int kPad = 3;
-  const glm::dvec3 span = glm::ceil(out.size / h) + 1.0 + 2.0 * kPad;
+  const glm::dvec3 first = glm::floor(lo / h) - double(kPad), span = glm::ceil(hi / h) + double(kPad) - first + 1.0;
   // Refused before anything is meshed; a tooth read in the wrong unit is the usual cause.
   if (span.x * span.y * span.z > double(kMaxVoxels)) {
     const bool large = std::max({out.size.x, out.size.y, out.size.z}) > 0.2;
@@ -67,7 +71,8 @@ MeshVolume voxeliseMesh(const SurfaceMesh& mesh, const std::string& name, const 
   }
   const glm::ivec3 dims(span);
   checkVolumeShape(name, dims, glm::dvec3(h));  // refuses too many voxels before anything is meshed
-  const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (glm::dvec3(dims) - 1.0);
+  const glm::dvec3 half = 0.5 * (glm::dvec3(dims) - 1.0), centre = (first + half) * h;
+  out.centre = centre;
 
   // Largest part first: each next one (inside it, in a nested tooth) is layered over it.
   std::vector<std::size_t> order(mesh.parts.size());

@@ -37,6 +37,9 @@ struct MeshVolume {
   std::vector<double> enclosed;  // each part's enclosed volume by its surface (m³)
   std::vector<std::size_t> triangles;
   glm::dvec3 size{0.0};          // the mesh's bounding box (m)
+  // The voxel box's centre in the mesh's coordinates (m): where the volume's
+  // local origin is. Voxel centres lie on multiples of the voxel size there.
+  glm::dvec3 centre{0.0};
   std::string format;
 };
 
