@@ -59,9 +59,12 @@ void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto strict = std::make_shared<bool>(false);
   cmd->add_option("scene", *scene, "X3D scene file")->required();
   addStrictFlag(cmd, *strict);
-  cmd->callback([scene, strict, &global, &result] {
+  auto sets = std::make_shared<std::vector<std::string>>();
+  addSetOption(cmd, *sets);
+  cmd->callback([scene, strict, sets, &global, &result] {
     LoadOptions options;
     options.strict = *strict;
+    applySetOptions(options, *sets);
     options.plugins.allowAnyPath = global.allowPluginPath;
     LoadResult r = loadSceneFile(*scene, builtinRegistry(), options);
     std::cerr << r.report();

@@ -24,6 +24,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("replay", "Replay a trajectory through the scene's haptics renderer (deterministic)");
   struct Args {
     bool strict = false;
+    std::vector<std::string> sets;
     std::string scene, trajectory, log, soundOut, saveVolume, saveMesh, report;
     struct {
       std::string renderer;
@@ -34,6 +35,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
   addStrictFlag(cmd, args->strict);
+  addSetOption(cmd, args->sets);
   cmd->add_option("--trajectory", args->trajectory,
                   "Trajectory CSV (t,x,y,z,qw,qx,qy,qz,button), or the --log of a `millsim run` to review that run "
                   "frame by frame")
@@ -57,6 +59,7 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
     lo.strict = args->strict;
+    applySetOptions(lo, args->sets);
     LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
     std::cerr << r.report();
     if (!r.ok()) {

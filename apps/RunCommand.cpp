@@ -34,6 +34,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto* cmd = app.add_subcommand("run", "Run a scene's device and renderer in real time (1 kHz haptic thread)");
   struct Args {
     bool strict = false, noGraphics = false, noWindow = false, noSound = false;
+    std::vector<std::string> sets;
     std::string scene, log, trajectory, device, size, soundOut, saveVolume, saveMesh, report;
     double duration = 0.0;
     SessionOptions session;
@@ -41,6 +42,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "X3D scene file")->required();
   addStrictFlag(cmd, args->strict);
+  addSetOption(cmd, args->sets);
   cmd->add_option("--duration", args->duration,
                   "Seconds to run (default: the device's trajectory; a hardware device runs until Ctrl-C)")
       ->check(finiteIn(0.001, 1e6, "s"));
@@ -75,6 +77,7 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     LoadOptions lo;
     lo.plugins.allowAnyPath = global.allowPluginPath;
     lo.strict = args->strict;
+    applySetOptions(lo, args->sets);
     LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
     std::cerr << r.report();
     result = kExitBadInput;

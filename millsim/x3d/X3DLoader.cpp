@@ -49,6 +49,10 @@ public:
     if (!canonical.empty()) inlineStack_.push_back(canonical);
     Document doc(SourceText(std::move(label), std::move(text)), std::move(dir), &scene_->defs);
     if (parseXml(doc)) readTopLevel(doc, scene_->root->children, true);
+    for (std::size_t i = 0; i < options_.overrides.size(); ++i)
+      if (!sink_.hasErrors() && overridesApplied_[i] == 0)
+        sink_.error(overrideLocation(options_.overrides[i]),
+                    "the scene has no " + options_.overrides[i].type + " whose field to set");
     // Whole-scene checks (NodeRegistry::addSceneCheck) need a scene whose nodes all loaded.
     if (!sink_.hasErrors())
       for (SceneCheck check : scene_->registry.sceneChecks()) check(*scene_, sink_);
@@ -434,6 +438,7 @@ private:
       }
     }
     readFields(doc, el, *node, tag, loc);
+    applyOverrides(*node);
 
     // Plugins register their node types before the rest of the file is read.
     if (auto* lib = dynamic_cast<ImportLibrary*>(node.get())) importLibrary(doc, *lib, loc);
@@ -876,7 +881,34 @@ private:
     return true;
   }
 
+  static SourceLocation overrideLocation(const LoadOptions::FieldOverride& o) { return {"--set " + o.text(), 0, 0}; }
+
+  // Field overrides (LoadOptions::overrides) on a node whose own attributes are read.
+  void applyOverrides(Node& node) {
+    for (std::size_t i = 0; i < options_.overrides.size(); ++i) {
+      const LoadOptions::FieldOverride& o = options_.overrides[i];
+      if (node.typeName() != o.type) continue;
+      ++overridesApplied_[i];
+      Field* f = node.field(o.field);
+      if (!f || !settableInFile(f->access()) || f->isNodeField()) {
+        std::vector<std::string> names;
+        for (Field* nf : node.fields())
+          if (settableInFile(nf->access()) && !nf->isNodeField()) names.emplace_back(nf->name());
+        sink_.error(overrideLocation(o), o.type + " has no field '" + o.field + "' a value can set" +
+                                             didYouMean(closestNames(o.field, names)));
+        continue;
+      }
+      try {
+        f->setFromSceneText(o.value, UnitScale{});  // SI, whatever the file says
+      } catch (const ValueError& e) {
+        sink_.error(overrideLocation(o), "bad value '" + o.value + "' for " + std::string(fieldTypeName(f->type())) +
+                                             " field '" + o.field + "' of " + o.type + ": " + e.what());
+      }
+    }
+  }
+
   const LoadOptions& options_;
+  std::vector<int> overridesApplied_ = std::vector<int>(options_.overrides.size(), 0);
   DiagnosticSink sink_;
   std::unique_ptr<Scene> scene_;
   std::vector<fs::path> inlineStack_;
@@ -919,6 +951,13 @@ LoadResult fileError(const fs::path& file, const char* message) {
   return r;
 }
 }  // namespace
+
+std::optional<LoadOptions::FieldOverride> parseFieldOverride(std::string_view text) {
+  const std::size_t eq = text.find('='), dot = text.substr(0, eq).find('.');
+  if (eq == std::string_view::npos || dot == std::string_view::npos || dot == 0 || dot + 1 == eq) return std::nullopt;
+  return LoadOptions::FieldOverride{std::string(text.substr(0, dot)), std::string(text.substr(dot + 1, eq - dot - 1)),
+                                    std::string(text.substr(eq + 1))};
+}
 
 LoadResult loadSceneFile(const fs::path& file, const NodeRegistry& registry, const LoadOptions& options) {
   Loader loader(registry, options);

@@ -3,6 +3,7 @@
 // loading and entity expansion are off. Every problem is a Diagnostic with
 // file:line:column; a scene with errors yields no Scene, never a crash.
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -27,7 +28,20 @@ struct LoadOptions {
   // true: every warning is an error too (the verbs' --strict), so a scene that
   // loads only by skipping or guessing is refused.
   bool strict = false;
+  // `--set TYPE.FIELD=VALUE` (a sweep's field axis): the field of every node of
+  // that type is set to the value after the file's attributes and before the
+  // node initialises, so an initializeOnly field (VolumeObject.voxelSize)
+  // takes effect too. A type the scene does not have, a field it does not
+  // have or a bad value is an error naming the override.
+  struct FieldOverride {
+    std::string type, field, value;
+    std::string text() const { return type + "." + field + "=" + value; }
+  };
+  std::vector<FieldOverride> overrides;
 };
+
+// Parses TYPE.FIELD=VALUE; std::nullopt if it has no '.' before the '=' or an empty part.
+std::optional<LoadOptions::FieldOverride> parseFieldOverride(std::string_view text);
 
 struct LoadResult {
   std::unique_ptr<Scene> scene;  // null when there were errors

@@ -215,3 +215,28 @@ TEST(Loader, EveryShippedSceneLoads) {
   // x3d/ ships default.x3d and three lessons: finding none would pass vacuously.
   EXPECT_GE(scenes, 4u) << "x3d scenes found under " MILLSIM_SOURCE_DIR "/x3d";
 }
+
+// --set TYPE.FIELD=VALUE (a sweep's field axis): every node of the type, before
+// it initialises; a type, field or value that does not fit is an error naming it.
+TEST(Loader, FieldOverridesSetEveryNodeOfTheTypeAndNameTheirMistakes) {
+  LoadOptions options;
+  options.overrides = {*parseFieldOverride("Sphere.radius=0.25")};
+  auto r = loadSceneString(x3d(R"(<Shape><Sphere DEF="A" radius="2"/></Shape><Shape><Sphere DEF="B"/></Shape>)"), "t.x3d",
+                           builtinRegistry(), options);
+  ASSERT_TRUE(r.ok()) << r.report();
+  EXPECT_FLOAT_EQ(std::dynamic_pointer_cast<Sphere>(r.scene->def("A"))->radius.get(), 0.25f);
+  EXPECT_FLOAT_EQ(std::dynamic_pointer_cast<Sphere>(r.scene->def("B"))->radius.get(), 0.25f);
+
+  auto fails = [](const std::string& set) {
+    LoadOptions o;
+    o.overrides = {*parseFieldOverride(set)};
+    return loadSceneString(x3d(R"(<Shape><Sphere/></Shape>)"), "t.x3d", builtinRegistry(), o).report();
+  };
+  EXPECT_NE(fails("Sphere.radus=1").find("--set Sphere.radus=1: error: Sphere has no field 'radus' a value can set; did you mean 'radius'?"),
+            std::string::npos);
+  EXPECT_NE(fails("Cone.height=1").find("--set Cone.height=1: error: the scene has no Cone whose field to set"), std::string::npos);
+  EXPECT_NE(fails("Sphere.radius=big").find("bad value 'big' for SFFloat field 'radius' of Sphere"), std::string::npos);
+  EXPECT_FALSE(parseFieldOverride("radius=1"));
+  EXPECT_FALSE(parseFieldOverride("Sphere.radius"));
+  EXPECT_FALSE(parseFieldOverride(".radius=1"));
+}
