@@ -22,6 +22,7 @@ int cliMain(int argc, char** argv) {
   addReplayCommand(app, global, result);
   addRenderCommand(app, global, result);
   addReportCommand(app, result);
+  addSweepCommand(app, result);
   addRunCommand(app, global, result);
   return parseAndRun(app, argc, argv, result);
 }

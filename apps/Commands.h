@@ -50,5 +50,6 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addReportCommand(CLI::App& app, int& result);
 void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result);
+void addSweepCommand(CLI::App& app, int& result);
 
 }  // namespace millsim::app

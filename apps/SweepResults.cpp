@@ -1,0 +1,132 @@
+#include "SweepResults.h"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "Commands.h"
+#include "SweepSlurm.h"
+#include "millsim/session/LessonReport.h"
+#include "sweep/SweepCells.h"
+
+namespace millsim::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Census {
+  std::vector<std::pair<sweep::Cell, sweep::CellStatus>> done, failed;
+  std::vector<sweep::Cell> pending, queued;
+};
+
+Census census(const SweepRequest& r) {
+  std::set<std::uint64_t> queued;
+  try {
+    queued = queuedCells(r);
+  } catch (const std::exception&) {
+    // No Slurm here: what the files say.
+  }
+  Census c;
+  for (std::uint64_t i = 0; i < r.sweep.cellCount(); ++i) {
+    const sweep::Cell cell = sweep::cellAt(r.sweep, i);
+    std::optional<sweep::CellStatus> status;
+    const sweep::CellState s = sweep::stateOf(r.out, cell, &status);
+    if (queued.count(i) && s != sweep::CellState::Done) c.queued.push_back(cell);
+    else if (s == sweep::CellState::Done) c.done.emplace_back(cell, *status);
+    else if (s == sweep::CellState::Failed) c.failed.emplace_back(cell, *status);
+    else c.pending.push_back(cell);
+  }
+  return c;
+}
+
+void listFailed(std::ostream& os, const SweepRequest& r, const Census& c) {
+  for (const auto& [cell, status] : c.failed)
+    os << "  failed: cell " << cell.id << " (exit " << status.exitCode << ", " << status.executor << " on " << status.host
+       << "): " << (sweep::cellFolder(r.out, cell) / "stderr.txt").string() << "\n";
+}
+
+std::string csvField(const std::string& v) {
+  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  std::string q = "\"";
+  for (const char ch : v) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+
+// The cell's own table: its CSV (header, rows), or its lesson report as a class-CSV row.
+std::pair<std::string, std::vector<std::string>> cellTable(const SweepRequest& r, const sweep::Cell& cell) {
+  const fs::path file = sweep::cellFolder(r.out, cell) / r.sweep.verb->table;
+  std::string text;
+  if (file.extension() == ".json") {
+    // Named by its place in the results folder: the same table wherever the folder is.
+    text = reportsCsv({{(fs::path("cells") / cell.id / r.sweep.verb->table).string(), readReport(file.string())}});
+  } else {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw std::runtime_error(file.string() + ": the cell finished but left no result table");
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  std::istringstream lines(text);
+  std::string header, line;
+  std::getline(lines, header);
+  std::vector<std::string> rows;
+  while (std::getline(lines, line))
+    if (!line.empty()) rows.push_back(line);
+  return {header, rows};
+}
+
+}  // namespace
+
+int printSummary(std::ostream& os, const SweepRequest& r) {
+  const Census c = census(r);
+  os << "sweep " << r.sweep.name << " (" << r.sweep.verb->name << "): " << r.sweep.cellCount() << " cells: " << c.done.size()
+     << " done, " << c.failed.size() << " failed, " << c.queued.size() << " in Slurm's queue, " << c.pending.size()
+     << " not run; results in " << r.out.string() << "\n";
+  double seconds = 0.0;
+  for (const auto& d : c.done) seconds += d.second.seconds;
+  if (!c.done.empty())
+    os << "  the done cells took " << std::fixed << std::setprecision(1) << seconds << " s of wall time in all, "
+       << seconds / double(c.done.size()) << " s each on average\n";
+  os.unsetf(std::ios::fixed);
+  listFailed(os, r, c);
+  if (!c.failed.empty()) os << "  `millsim sweep FILE --local|--slurm --retry-failed` runs the failed cells again\n";
+  return c.done.size() == r.sweep.cellCount() ? kExitOk : kExitFailure;
+}
+
+int collect(std::ostream& os, const SweepRequest& r) {
+  const Census c = census(r);
+  const fs::path csv = r.csv.empty() ? r.out / "results.csv" : fs::absolute(r.csv);
+  std::string header;
+  std::ostringstream body;
+  std::size_t rows = 0;
+  for (const auto& [cell, status] : c.done) {
+    const auto [cellHeader, cellRows] = cellTable(r, cell);
+    if (header.empty()) {
+      header = "cell";
+      for (const sweep::SweepParam& a : r.sweep.axes) header += "," + csvField(a.spec->name);
+      header += ",host,cell_seconds," + cellHeader;
+    } else if (header.substr(header.size() - cellHeader.size()) != cellHeader) {
+      throw std::runtime_error("cell " + cell.id + "'s table has other columns than the cells before it: " + cellHeader);
+    }
+    std::ostringstream prefix;
+    prefix << cell.id;
+    for (std::size_t a = 0; a < r.sweep.axes.size(); ++a)
+      prefix << "," << csvField(sweep::shownValue(r.sweep, r.sweep.axes[a], cell.values[a]));
+    prefix << "," << csvField(status.host) << "," << std::fixed << std::setprecision(3) << status.seconds;
+    for (const std::string& row : cellRows) body << prefix.str() << "," << row << "\n", ++rows;
+  }
+  fs::create_directories(csv.parent_path());
+  std::ofstream out(csv, std::ios::binary);
+  out << header << "\n" << body.str();
+  out.close();
+  if (!out) throw std::runtime_error(csv.string() + ": cannot write the merged table");
+  os << "collected " << c.done.size() << " of " << r.sweep.cellCount() << " cells (" << rows << " rows) into "
+     << csv.string() << "; host and cell_seconds say where and how long each ran (timings, as are columns named *_us)\n";
+  listFailed(os, r, c);
+  if (!c.queued.empty() || !c.pending.empty())
+    os << "  " << c.queued.size() << " cells still in Slurm's queue, " << c.pending.size() << " not run\n";
+  return c.done.size() == r.sweep.cellCount() ? kExitOk : kExitFailure;
+}
+
+}  // namespace millsim::app

@@ -1,0 +1,143 @@
+#include "SweepSlurm.h"
+
+#include <sys/stat.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "Commands.h"
+#include "SweepProcesses.h"
+#include "SweepResults.h"
+#include "sweep/SweepCells.h"
+
+namespace millsim::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string jobName(const SweepRequest& r) { return "millsim-" + r.sweep.name; }
+
+std::vector<std::string> recordedJobs(const SweepRequest& r) {
+  std::vector<std::string> ids;
+  std::ifstream in(r.out / "slurm" / "jobs.txt");
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) ids.push_back(line);
+  return ids;
+}
+
+// "0-3,5,9-10": Slurm's --array list.
+std::string arrayList(const std::vector<std::uint64_t>& cells) {
+  std::string s;
+  for (std::size_t i = 0; i < cells.size();) {
+    std::size_t j = i;
+    while (j + 1 < cells.size() && cells[j + 1] == cells[j] + 1) ++j;
+    s += (s.empty() ? "" : ",") + std::to_string(cells[i]) + (j > i ? "-" + std::to_string(cells[j]) : "");
+    i = j + 1;
+  }
+  return s;
+}
+
+// Slurm refuses array indices at or above MaxArraySize (1001 unless the cluster says otherwise).
+std::uint64_t maxArraySize() {
+  const Captured c = capture({"scontrol", "show", "config"});
+  std::istringstream in(c.out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("MaxArraySize", 0) == 0)
+      if (const std::size_t eq = line.find('='); eq != std::string::npos) return std::stoull(line.substr(eq + 1));
+  return 1001;
+}
+
+std::string slurmFailure(const char* tool, const Captured& c) {
+  if (c.exitCode < 0) return std::string(tool) + " is not on PATH: --slurm needs Slurm's client commands (Debian: slurm-client)";
+  std::string err = c.err.empty() ? c.out : c.err;
+  while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+  return std::string(tool) + " failed (exit " + std::to_string(c.exitCode) + "): " + err;
+}
+
+}  // namespace
+
+std::set<std::uint64_t> queuedCells(const SweepRequest& r) {
+  std::set<std::uint64_t> queued;
+  const std::vector<std::string> jobs = recordedJobs(r);
+  if (jobs.empty()) return queued;
+  // By name, not by id: squeue -j fails for a job it has forgotten.
+  const Captured c = capture({"squeue", "-h", "-r", "--name=" + jobName(r), "-o", "%F %K"});
+  if (c.exitCode != 0) throw std::runtime_error(slurmFailure("squeue", c));
+  std::istringstream in(c.out);
+  for (std::string job, task; in >> job >> task;)
+    if (std::find(jobs.begin(), jobs.end(), job) != jobs.end() && task.find_first_not_of("0123456789") == std::string::npos)
+      queued.insert(std::stoull(task));
+  return queued;
+}
+
+int runSlurm(const SweepRequest& r) {
+  const std::set<std::uint64_t> queued = queuedCells(r);
+  std::vector<std::uint64_t> todo;
+  std::uint64_t done = 0, failed = 0;
+  for (std::uint64_t i = 0; i < r.sweep.cellCount(); ++i) {
+    if (queued.count(i)) continue;
+    const sweep::CellState s = sweep::stateOf(r.out, sweep::cellAt(r.sweep, i));
+    if (s == sweep::CellState::Done) ++done;
+    else if (s == sweep::CellState::Failed && !r.retryFailed) ++failed;
+    else todo.push_back(i);
+  }
+  std::cout << "sweep " << r.sweep.name << ": " << r.sweep.cellCount() << " cells, " << done << " done, " << queued.size()
+            << " in Slurm's queue, " << todo.size() << " to submit\n";
+  if (failed) std::cout << "  " << failed << " failed before and left so (--retry-failed submits them again)\n";
+  if (!todo.empty()) {
+    if (const std::uint64_t limit = maxArraySize(); todo.back() >= limit)
+      throw std::runtime_error("cell " + std::to_string(todo.back()) + " is past the cluster's MaxArraySize " +
+                               std::to_string(limit) + " (array indices are cell numbers): raise MaxArraySize in "
+                               "slurm.conf or split the sweep");
+    const fs::path slurm = r.out / "slurm";
+    fs::create_directories(slurm);
+    fs::create_directories(r.out / "cells");
+    const std::vector<std::string> jobs = recordedJobs(r);
+    const fs::path script = slurm / ("submit-" + std::to_string(jobs.size() + 1) + ".sh");
+    {
+      std::ofstream s(script);
+      s << "#!/bin/sh\n"
+        << "# millsim sweep " << r.sweep.file.string() << ": " << todo.size() << " of " << r.sweep.cellCount()
+        << " cells, one per task; the task's index is the cell's.\n"
+        << "#SBATCH --job-name=" << jobName(r) << "\n"
+        << "#SBATCH --array=" << arrayList(todo) << (r.sweep.slurm.maxParallel ? "%" + std::to_string(r.sweep.slurm.maxParallel) : "")
+        << "\n#SBATCH --output=" << (slurm / "task-%A_%a.out").string() << "\n"
+        << "#SBATCH --cpus-per-task=1\n";
+      if (!r.sweep.slurm.partition.empty()) s << "#SBATCH --partition=" << r.sweep.slurm.partition << "\n";
+      if (!r.sweep.slurm.time.empty()) s << "#SBATCH --time=" << r.sweep.slurm.time << "\n";
+      s << "exec " << sweep::shellQuoted({millsimExecutable().string(), "sweep", "cell", r.sweep.file.string()})
+        << " \"$SLURM_ARRAY_TASK_ID\" " << sweep::shellQuoted({"--out", r.out.string(), "--yes"}) << "\n";
+      s.close();
+      if (!s) throw std::runtime_error(script.string() + ": cannot write the job script");
+    }
+    ::chmod(script.c_str(), 0755);
+    const Captured c = capture({"sbatch", "--parsable", script.string()});
+    if (c.exitCode != 0) throw std::runtime_error(slurmFailure("sbatch", c));
+    std::string id = c.out.substr(0, c.out.find_first_of(";\n"));
+    std::ofstream(slurm / "jobs.txt", std::ios::app) << id << "\n";
+    std::cout << "submitted job " << id << ": cells " << arrayList(todo)
+              << (r.sweep.slurm.maxParallel ? ", at most " + std::to_string(r.sweep.slurm.maxParallel) + " at once" : "")
+              << " (" << script.string() << ")\n";
+  }
+  if (!r.wait) {
+    std::cout << "follow it with `millsim sweep status " << r.sweep.file.string() << "`\n";
+    return kExitOk;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    const std::size_t left = queuedCells(r).size();
+    if (left == 0) break;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > r.timeout) {
+      std::cout << left << " cells still in Slurm's queue after " << r.timeout << " s\n";
+      return kExitFailure;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  return printSummary(std::cout, r);
+}
+
+}  // namespace millsim::app
