@@ -1,4 +1,4 @@
-// millsim bench accuracy | physical | rates | procedure | zwidth: the measurements behind docs/results.md
+// millsim bench accuracy | physical | rates | procedure | stability | zwidth: the measurements behind docs/results.md
 // and docs/accuracy.md
 // (scripts/bench runs them). Renderers are named by registry type and
 // configured by field name, so a new renderer type needs no change here.
@@ -16,6 +16,7 @@
 #include "measure/PhysicalScenes.h"
 #include "measure/Procedure.h"
 #include "measure/Rates.h"
+#include "measure/Stability.h"
 #include "measure/ZWidth.h"
 
 namespace millsim::app {
@@ -373,6 +374,63 @@ int runProcedure(const ProcedureArgs& a) {
   return kExitOk;
 }
 
+struct StabilityArgs {
+  std::vector<std::string> renderers, scenarios;
+  std::vector<double> masses, dampings, stiffnesses;  // empty: the hand grid's
+  double drop = 0.0;
+  std::uint64_t seed = 1;
+  std::string csv;
+};
+
+// The stability suite's closed loop (docs/stability.md) over a grid of grips
+// and scenarios, one CSV row each: what the soak grid runs, a cell at a time
+// when a sweep spreads it (x3d/stability-soak.json). No waivers here: a row
+// says what failed; the test suite decides what is excused.
+int runStability(const StabilityArgs& a) {
+  const std::vector<std::string> types = a.renderers.empty() ? registeredRenderers() : a.renderers;
+  auto pick = [](const std::vector<double>& given, std::vector<double> all) { return given.empty() ? all : given; };
+  const std::vector<double> ms = pick(a.masses, {0.1, 0.55}), bs = pick(a.dampings, {2.0, 6.5, 10.0}),
+                            ks = pick(a.stiffnesses, {135.0, 500.0, 1000.0});
+  std::vector<Scenario> scenarios;
+  for (const Scenario& sc : standardScenarios())
+    if (a.scenarios.empty() || std::find(a.scenarios.begin(), a.scenarios.end(), sc.name()) != a.scenarios.end())
+      scenarios.push_back(sc);
+  if (scenarios.empty()) {
+    std::string names;
+    for (const Scenario& sc : standardScenarios()) names += (names.empty() ? "" : ", ") + sc.name();
+    throw std::invalid_argument("no scenario of that name; the scenarios are " + names);
+  }
+  std::ostringstream rows;
+  int failed = 0;
+  for (const std::string& type : types)
+    for (double m : ms)
+      for (double b : bs)
+        for (double k : ks) {
+          HandModel hand;
+          hand.handMass = m, hand.handDamping = b, hand.handStiffness = k;
+          for (const Scenario& sc : scenarios) {
+            const ScenarioResult r = runScenario({type, {}}, sc, hand, a.drop, a.seed);
+            std::string why = r.failure;
+            for (char& c : why)
+              if (c == ',' || c == '"') c = ';';
+            rows << r.renderer << "," << r.scenario << "," << m << "," << b << "," << k << "," << a.drop << "," << a.seed
+                 << "," << (r.passed ? "pass" : "fail") << "," << r.minEnergy << "," << r.energyBound << ","
+                 << r.limitCycle << "," << r.peakForce << "," << r.maxPenetration << "," << r.contactSpeed << "," << why
+                 << "\n";
+            failed += !r.passed;
+            std::cerr << type << " " << r.scenario << " " << r.hand << (a.drop > 0 ? " drop " + fmt(a.drop) : "") << ": "
+                      << (r.passed ? "passes" : "FAILS: " + r.failure) << "\n";
+          }
+        }
+  const std::string header = "renderer,scenario,hand_mass_kg,hand_damping_Ns_per_m,hand_stiffness_N_per_m,drop,seed,"
+                             "result,min_energy_J,energy_bound_J,limit_cycle_m,peak_force_N,max_penetration_m,"
+                             "contact_speed_m_per_s,failure\n";
+  if (!a.csv.empty()) openOut(a.csv) << header << rows.str();
+  else std::cout << header << rows.str();
+  std::cerr << failed << " runs failed a stability check\n";
+  return kExitOk;
+}
+
 struct ZWidthArgs {
   std::vector<std::string> renderers;
   double from = 250.0, to = 1024000.0;
@@ -481,6 +539,21 @@ void addBenchCommand(CLI::App& app, int& result) {
   phys->add_option("--poses", ph->poses, "Write one CSV row per pose (forces, torques, errors) at the default resolution");
   phys->add_option("--md", ph->md, "Write the Markdown tables here (default: stdout)");
   onRun(phys, ph, runPhysical, result);
+
+  auto* stab = bench->add_subcommand(
+      "stability", "Closed-loop passivity, limit cycles and release over hand grips and scenarios (docs/stability.md)");
+  auto st = std::make_shared<StabilityArgs>();
+  stab->add_option("--renderer", st->renderers, "Renderer type (repeatable; default: every registered one)");
+  stab->add_option("--mass", st->masses, "Hand mass, kg (repeatable; default 0.1 and 0.55)")->check(CLI::Range(0.01, 10.0));
+  stab->add_option("--damping", st->dampings, "Hand damping, N·s/m (repeatable; default 2, 6.5 and 10)")
+      ->check(CLI::Range(0.0, 1000.0));
+  stab->add_option("--stiffness", st->stiffnesses, "Hand stiffness, N/m (repeatable; default 135, 500 and 1000)")
+      ->check(CLI::Range(0.0, 100000.0));
+  stab->add_option("--scenario", st->scenarios, "Scenario name, e.g. slide-50mm/s (repeatable; default: all eight)");
+  stab->add_option("--drop", st->drop, "Fraction of device samples dropped (default 0)")->check(CLI::Range(0.0, 0.5));
+  stab->add_option("--seed", st->seed, "Seed of the dropped samples (default 1)");
+  stab->add_option("--csv", st->csv, "Write one row per run here (default: standard output)");
+  onRun(stab, st, runStability, result);
 
   auto* rates = bench->add_subcommand("rates", "Frame time on the tooth phantom (the paper's §8.1 test)");
   auto r = std::make_shared<RatesArgs>();

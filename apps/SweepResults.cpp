@@ -1,9 +1,13 @@
 #include "SweepResults.h"
 
+#include <charconv>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "Commands.h"
 #include "SweepSlurm.h"
@@ -44,6 +48,29 @@ void listFailed(std::ostream& os, const SweepRequest& r, const Census& c) {
   for (const auto& [cell, status] : c.failed)
     os << "  failed: cell " << cell.id << " (exit " << status.exitCode << ", " << status.executor << " on " << status.host
        << "): " << (sweep::cellFolder(r.out, cell) / "stderr.txt").string() << "\n";
+}
+
+// One CSV line's fields (quoted ones unquoted).
+std::vector<std::string> csvFields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
+    else if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) out.emplace_back();
+    else out.back() += c;
+  }
+  return out;
+}
+
+// A number where the whole field is one, null where it is empty, else the text.
+nlohmann::json jsonValue(const std::string& v) {
+  if (v.empty()) return nullptr;
+  double d = 0.0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), d);
+  if (!v.empty() && ec == std::errc() && end == v.data() + v.size() && std::isfinite(d)) return d;
+  return v;
 }
 
 std::string csvField(const std::string& v) {
@@ -100,8 +127,21 @@ int collect(std::ostream& os, const SweepRequest& r) {
   std::string header;
   std::ostringstream body;
   std::size_t rows = 0;
+  nlohmann::json cells = nlohmann::json::array();
   for (const auto& [cell, status] : c.done) {
     const auto [cellHeader, cellRows] = cellTable(r, cell);
+    nlohmann::json entry{{"cell", cell.id}, {"host", status.host}, {"cell_seconds", status.seconds}};
+    for (std::size_t a = 0; a < r.sweep.axes.size(); ++a)
+      entry["grid"][r.sweep.axes[a].spec->name] = jsonValue(sweep::shownValue(r.sweep, r.sweep.axes[a], cell.values[a]));
+    const std::vector<std::string> names = csvFields(cellHeader);
+    entry["rows"] = nlohmann::json::array();
+    for (const std::string& row : cellRows) {
+      const std::vector<std::string> values = csvFields(row);
+      nlohmann::json o = nlohmann::json::object();
+      for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) o[names[i]] = jsonValue(values[i]);
+      entry["rows"].push_back(std::move(o));
+    }
+    cells.push_back(std::move(entry));
     if (header.empty()) {
       header = "cell";
       for (const sweep::SweepParam& a : r.sweep.axes) header += "," + csvField(a.spec->name);
@@ -121,8 +161,16 @@ int collect(std::ostream& os, const SweepRequest& r) {
   out << header << "\n" << body.str();
   out.close();
   if (!out) throw std::runtime_error(csv.string() + ": cannot write the merged table");
+  fs::path json = csv;
+  json.replace_extension(".json");
+  std::ofstream jout(json, std::ios::binary);
+  jout << nlohmann::json{{"sweep", r.sweep.name}, {"verb", r.sweep.verb->name}, {"cells", cells}}.dump(1) << "\n";
+  jout.close();
+  if (!jout) throw std::runtime_error(json.string() + ": cannot write the merged table");
   os << "collected " << c.done.size() << " of " << r.sweep.cellCount() << " cells (" << rows << " rows) into "
-     << csv.string() << "; host and cell_seconds say where and how long each ran (timings, as are columns named *_us)\n";
+     << csv.string() << " (and " << json.filename().string() << "); host and cell_seconds say where and how long each ran (timings, as are columns named *_us)\n";
+  if (header.find(",p99_us,") != std::string::npos || header.find(",force_rms,") != std::string::npos)
+    os << "  run time against error: scripts/plot-sweep " << csv.string() << " --out pareto.png\n";
   listFailed(os, r, c);
   if (!c.queued.empty() || !c.pending.empty())
     os << "  " << c.queued.size() << " cells still in Slurm's queue, " << c.pending.size() << " not run\n";

@@ -90,7 +90,7 @@ public:
     sweep_.verb = findVerb(verb->text);
     if (!sweep_.verb)
       fail(verb->at, "unknown verb '" + verb->text + "'; expected " + verbNames() +
-                         (verb->text == "bench resolution" || verb->text == "bench stability"
+                         (verb->text == "bench resolution"
                               ? " (MillSim has no `" + verb->text + "` yet)"
                               : ""));
     if (fixed) readParams(*fixed, "fixed", sweep_.fixed, false);
