@@ -2,8 +2,12 @@
 // millsim sweep cell FILE INDEX: a grid of millsim commands (sweep/SweepFile.h)
 // run on this machine's cores or as one Slurm job array, resumable, merged
 // into one table (docs/sweeps.md).
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "Commands.h"
 #include "SweepExecutors.h"
@@ -18,7 +22,7 @@ void addSweepCommand(CLI::App& app, int& result) {
     bool local = false, slurm = false, retryFailed = false, yes = false, dryRun = false, wait = false;
     int jobs = 0;
     double timeout = 3600.0;
-    std::string out, csv;
+    std::string out, csv, submitted;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -35,7 +39,10 @@ void addSweepCommand(CLI::App& app, int& result) {
   cmd->add_flag("--wait", a->wait, "--slurm: wait until the job's cells have left the queue, then sum up");
   cmd->add_option("--timeout", a->timeout, "--wait: give up after this many seconds (default 3600)")
       ->check(CLI::Range(1.0, 1e7));
-  cmd->add_option("--csv", a->csv, "collect: the merged table (default: OUT/results.csv)");
+  cmd->add_option("--csv", a->csv, "collect: the merged table (default: OUT/results.csv; and .json beside it)");
+  cmd->add_option("--submitted", a->submitted,
+                  "cell: the submission's list of cells (what a Slurm task is given): refuse a cell whose command "
+                  "has changed since");
   cmd->callback([a, &result] {
     std::string verb = "run";
     std::vector<std::string> w = a->words;
@@ -58,19 +65,27 @@ void addSweepCommand(CLI::App& app, int& result) {
     try {
       sweep::SweepContext context;
       context.renderers = measure::registeredRenderers();
-      context.yes = a->yes;
+      context.yes = a->yes || verb != "run";  // looking at a sweep, or running a cell of it, runs no grid
       r.sweep = sweep::readSweep(w[0], context);
       r.out = a->out.empty() ? sweep::defaultOutput(r.sweep) : std::filesystem::absolute(a->out);
       if (verb == "cell") {
         std::size_t used = 0;
-        const unsigned long long index = std::stoull(w[1], &used);
-        if (used != w[1].size() || index >= r.sweep.cellCount())
+        unsigned long long index = 0;
+        try {
+          index = w[1].find_first_not_of("0123456789") == std::string::npos ? std::stoull(w[1], &used) : 0;
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != w[1].size() || index >= r.sweep.cellCount())
           throw std::invalid_argument("cell " + w[1] + ": expected an index from 0 to " +
                                       std::to_string(r.sweep.cellCount() - 1));
         r.cell = index;
+        r.submitted = a->submitted;
       }
       if (verb == "run" && !a->dryRun && a->local == a->slurm)
         throw std::invalid_argument("say where the cells run: --local (here) or --slurm (a Slurm cluster)");
+      if (verb == "collect" && !a->csv.empty() && std::filesystem::path(a->csv).extension() == ".json")
+        throw std::invalid_argument("--csv " + a->csv + ": name the CSV .csv; the JSON is written beside it");
       r.slurm = a->slurm;
     } catch (const std::exception& e) {
       std::cerr << "millsim sweep: error: " << e.what() << "\n";

@@ -20,6 +20,7 @@ struct SweepRequest {
   int jobs = 0;            // --local: at once; 0: the cores
   double timeout = 3600;   // --slurm --wait
   std::uint64_t cell = 0;  // cell
+  std::filesystem::path submitted;  // cell: the submission's list of cells and commands (SweepSlurm.h)
   std::string csv;         // collect
 };
 

@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -51,7 +52,7 @@ std::vector<char*> argvOf(std::vector<std::string>& args) {
 
 fs::path millsimExecutable() { return fs::read_symlink("/proc/self/exe"); }
 
-pid_t startCell(const fs::path& exe, const sweep::Cell& cell, const fs::path& folder) {
+pid_t startCell(const fs::path& exe, const sweep::Cell& cell, const fs::path& folder, bool ownGroup) {
   std::error_code ec;
   fs::remove_all(folder, ec);
   fs::create_directories(folder);
@@ -66,7 +67,7 @@ pid_t startCell(const fs::path& exe, const sweep::Cell& cell, const fs::path& fo
   posix_spawn_file_actions_addopen(&s.actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addchdir_np(&s.actions, folder.c_str());
   posix_spawnattr_setpgroup(&s.attr, 0);
-  posix_spawnattr_setflags(&s.attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setflags(&s.attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | (ownGroup ? POSIX_SPAWN_SETPGROUP : 0));
   std::vector<std::string> args{exe.string()};
   args.insert(args.end(), cell.args.begin(), cell.args.end());
   std::vector<char*> argv = argvOf(args);
@@ -74,6 +75,18 @@ pid_t startCell(const fs::path& exe, const sweep::Cell& cell, const fs::path& fo
   if (const int e = posix_spawn(&pid, exe.c_str(), &s.actions, &s.attr, argv.data(), environ); e != 0)
     throw std::runtime_error("cannot start " + exe.string() + ": " + std::strerror(e));
   return pid;
+}
+
+FolderLock::FolderLock(const fs::path& out) {
+  fs::create_directories(out);
+  fd_ = ::open((out / ".lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+    throw std::runtime_error(out.string() + " is in use by another `millsim sweep` (running or submitting its cells); "
+                             "wait for it, or give this one another --out");
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 int exitCodeOf(int status) {

@@ -94,13 +94,21 @@ std::pair<std::string, std::vector<std::string>> cellTable(const SweepRequest& r
     s << in.rdbuf();
     text = s.str();
   }
-  std::istringstream lines(text);
-  std::string header, line;
-  std::getline(lines, header);
+  // Records, not lines: a quoted field may hold a line break.
+  std::vector<std::string> records(1);
+  bool quoted = false;
+  for (const char ch : text) {
+    if (ch == '"') quoted = !quoted;
+    if (ch == '\n' && !quoted) {
+      records.emplace_back();
+      continue;
+    }
+    records.back() += ch;
+  }
   std::vector<std::string> rows;
-  while (std::getline(lines, line))
-    if (!line.empty()) rows.push_back(line);
-  return {header, rows};
+  for (std::size_t i = 1; i < records.size(); ++i)
+    if (!records[i].empty()) rows.push_back(records[i]);
+  return {records[0], rows};
 }
 
 }  // namespace
@@ -124,7 +132,7 @@ int printSummary(std::ostream& os, const SweepRequest& r) {
 int collect(std::ostream& os, const SweepRequest& r) {
   const Census c = census(r);
   const fs::path csv = r.csv.empty() ? r.out / "results.csv" : fs::absolute(r.csv);
-  std::string header;
+  std::string header, firstTable;
   std::ostringstream body;
   std::size_t rows = 0;
   nlohmann::json cells = nlohmann::json::array();
@@ -146,7 +154,8 @@ int collect(std::ostream& os, const SweepRequest& r) {
       header = "cell";
       for (const sweep::SweepParam& a : r.sweep.axes) header += "," + csvField(a.spec->name);
       header += ",host,cell_seconds," + cellHeader;
-    } else if (header.substr(header.size() - cellHeader.size()) != cellHeader) {
+      firstTable = cellHeader;
+    } else if (cellHeader != firstTable) {
       throw std::runtime_error("cell " + cell.id + "'s table has other columns than the cells before it: " + cellHeader);
     }
     std::ostringstream prefix;
@@ -164,7 +173,9 @@ int collect(std::ostream& os, const SweepRequest& r) {
   fs::path json = csv;
   json.replace_extension(".json");
   std::ofstream jout(json, std::ios::binary);
-  jout << nlohmann::json{{"sweep", r.sweep.name}, {"verb", r.sweep.verb->name}, {"cells", cells}}.dump(1) << "\n";
+  jout << nlohmann::json{{"sweep", r.sweep.name}, {"verb", r.sweep.verb->name}, {"cells", cells}}.dump(
+              1, ' ', false, nlohmann::json::error_handler_t::replace)
+       << "\n";
   jout.close();
   if (!jout) throw std::runtime_error(json.string() + ": cannot write the merged table");
   os << "collected " << c.done.size() << " of " << r.sweep.cellCount() << " cells (" << rows << " rows) into "

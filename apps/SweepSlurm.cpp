@@ -2,8 +2,10 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -74,7 +76,16 @@ std::set<std::uint64_t> queuedCells(const SweepRequest& r) {
   return queued;
 }
 
+std::string submittedCommand(const fs::path& cells, std::uint64_t index) {
+  std::ifstream in(cells, std::ios::binary);
+  const std::string prefix = std::to_string(index) + "\t";
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) return line.substr(prefix.size());
+  return {};
+}
+
 int runSlurm(const SweepRequest& r) {
+  std::optional<FolderLock> lock(std::in_place, r.out);  // while choosing and submitting cells
   const std::set<std::uint64_t> queued = queuedCells(r);
   std::vector<std::uint64_t> todo;
   std::uint64_t done = 0, failed = 0;
@@ -96,26 +107,36 @@ int runSlurm(const SweepRequest& r) {
     const fs::path slurm = r.out / "slurm";
     fs::create_directories(slurm);
     fs::create_directories(r.out / "cells");
-    const std::vector<std::string> jobs = recordedJobs(r);
-    const fs::path script = slurm / ("submit-" + std::to_string(jobs.size() + 1) + ".sh");
+    const std::string n = std::to_string(recordedJobs(r).size() + 1);
+    // What each task must find when it starts: its cell's command as submitted.
+    const fs::path cells = slurm / ("submit-" + n + ".cells"), script = slurm / ("submit-" + n + ".sh");
     {
+      std::ofstream list(cells, std::ios::binary);
+      for (std::uint64_t i : todo) list << i << "\t" << sweep::shellQuoted(sweep::cellAt(r.sweep, i).args) << "\n";
+      list.close();
+      if (!list) throw std::runtime_error(cells.string() + ": cannot write the submitted cells");
+    }
+    {
+      // The job's settings go to sbatch as arguments, not #SBATCH lines:
+      // a path with a space or a '#' would break those.
       std::ofstream s(script);
-      s << "#!/bin/sh\n"
-        << "# millsim sweep " << r.sweep.file.string() << ": " << todo.size() << " of " << r.sweep.cellCount()
-        << " cells, one per task; the task's index is the cell's.\n"
-        << "#SBATCH --job-name=" << jobName(r) << "\n"
-        << "#SBATCH --array=" << arrayList(todo) << (r.sweep.slurm.maxParallel ? "%" + std::to_string(r.sweep.slurm.maxParallel) : "")
-        << "\n#SBATCH --output=" << (slurm / "task-%A_%a.out").string() << "\n"
-        << "#SBATCH --cpus-per-task=1\n";
-      if (!r.sweep.slurm.partition.empty()) s << "#SBATCH --partition=" << r.sweep.slurm.partition << "\n";
-      if (!r.sweep.slurm.time.empty()) s << "#SBATCH --time=" << r.sweep.slurm.time << "\n";
-      s << "exec " << sweep::shellQuoted({millsimExecutable().string(), "sweep", "cell", r.sweep.file.string()})
-        << " \"$SLURM_ARRAY_TASK_ID\" " << sweep::shellQuoted({"--out", r.out.string(), "--yes"}) << "\n";
+      s << "#!/bin/sh\n# A millsim sweep's cells, one per array task; the task's index is the cell's.\n"
+        << "exec "
+        << sweep::shellQuoted({millsimExecutable().string(), "sweep", "cell", r.sweep.file.string()})
+        << " \"$SLURM_ARRAY_TASK_ID\" "
+        << sweep::shellQuoted({"--out", r.out.string(), "--submitted", cells.string(), "--yes"}) << "\n";
       s.close();
       if (!s) throw std::runtime_error(script.string() + ": cannot write the job script");
     }
     ::chmod(script.c_str(), 0755);
-    const Captured c = capture({"sbatch", "--parsable", script.string()});
+    std::vector<std::string> sbatch{"sbatch", "--parsable", "--job-name=" + jobName(r),
+                                    "--array=" + arrayList(todo) +
+                                        (r.sweep.slurm.maxParallel ? "%" + std::to_string(r.sweep.slurm.maxParallel) : ""),
+                                    "--output=" + (slurm / "task-%A_%a.out").string(), "--cpus-per-task=1"};
+    if (!r.sweep.slurm.partition.empty()) sbatch.push_back("--partition=" + r.sweep.slurm.partition);
+    if (!r.sweep.slurm.time.empty()) sbatch.push_back("--time=" + r.sweep.slurm.time);
+    sbatch.push_back(script.string());
+    const Captured c = capture(sbatch);
     if (c.exitCode != 0) throw std::runtime_error(slurmFailure("sbatch", c));
     std::string id = c.out.substr(0, c.out.find_first_of(";\n"));
     std::ofstream(slurm / "jobs.txt", std::ios::app) << id << "\n";
@@ -123,6 +144,7 @@ int runSlurm(const SweepRequest& r) {
               << (r.sweep.slurm.maxParallel ? ", at most " + std::to_string(r.sweep.slurm.maxParallel) + " at once" : "")
               << " (" << script.string() << ")\n";
   }
+  lock.reset();
   if (!r.wait) {
     std::cout << "follow it with `millsim sweep status " << r.sweep.file.string() << "`\n";
     return kExitOk;
@@ -135,7 +157,8 @@ int runSlurm(const SweepRequest& r) {
       std::cout << left << " cells still in Slurm's queue after " << r.timeout << " s\n";
       return kExitFailure;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    // Every 2 s: squeue asks the cluster's controller, which others share.
+    std::this_thread::sleep_for(std::chrono::seconds(2));
   }
   return printSummary(std::cout, r);
 }

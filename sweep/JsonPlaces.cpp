@@ -47,10 +47,15 @@ public:
 
   JsonValue root;
 
+  // Columns count characters, not bytes (a UTF-8 sequence is one).
   Place placeOf(std::size_t offset) const {
+    offset = std::min(offset, text_.empty() ? 0 : text_.size() - 1);
     const auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
     const std::size_t line = std::size_t(it - lineStarts_.begin());
-    return {int(line), int(offset - lineStarts_[line - 1]) + 1};
+    int column = 1;
+    for (std::size_t i = lineStarts_[line - 1]; i < offset; ++i)
+      column += (static_cast<unsigned char>(text_[i]) & 0xC0) != 0x80;
+    return {int(line), column};
   }
   [[noreturn]] void fail(Place at, const std::string& what) const {
     throw SweepError(file_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + what);
@@ -147,6 +152,8 @@ private:
   }
   bool open(JsonValue::Kind kind) {
     JsonValue j = scalar(kind, consumed_ > 0 ? consumed_ - 1 : 0);
+    // A sweep file nests three or four deep; the tree is freed recursively.
+    if (stack_.size() >= kMaxDepth) fail(j.at, "lists and objects nested deeper than " + std::to_string(kMaxDepth));
     if (stack_.empty()) {
       root = std::move(j);
       stack_.push_back(&root);
@@ -169,6 +176,7 @@ private:
     return true;
   }
 
+  static constexpr std::size_t kMaxDepth = 64;
   const std::string& text_;
   const std::string& file_;
   const std::size_t& consumed_;

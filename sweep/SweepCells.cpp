@@ -57,7 +57,7 @@ void writeStatus(const fs::path& folder, const CellStatus& s) {
   const fs::path tmp = folder / ("status.json.tmp." + std::to_string(::getpid()));
   {
     std::ofstream out(tmp, std::ios::binary);
-    out << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     out.close();
     if (!out) throw std::runtime_error((folder / "status.json").string() + ": cannot write the cell's status");
   }

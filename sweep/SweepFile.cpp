@@ -6,7 +6,9 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <string_view>
 
 namespace millsim::sweep {
 namespace fs = std::filesystem;
@@ -41,7 +43,8 @@ bool naturalLess(const std::string& a, const std::string& b) {
     if (a[i] != b[j]) return a[i] < b[j];
     ++i, ++j;
   }
-  return a.size() - i < b.size() - j;
+  if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
+  return a < b;  // run_01 and run_1: one order everywhere
 }
 
 bool inside(const fs::path& folder, const fs::path& p) {
@@ -75,7 +78,11 @@ public:
     const JsonValue* fixed = nullptr;
     const JsonValue* grid = nullptr;
     const JsonValue* verb = nullptr;
+    // The file's stem, made a name Slurm and a folder take as one word.
     sweep_.name = sweep_.file.stem().string();
+    for (char& c : sweep_.name)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    if (sweep_.name.size() > 64) sweep_.name.resize(64);
     for (std::size_t i = 0; i < root.members.size(); ++i) {
       const auto& [key, value] = root.members[i];
       if (key == "verb") verb = &value;
@@ -173,6 +180,7 @@ private:
           fail(object.keyPlaces[i], "\"" + key + "\" is both fixed (line " + std::to_string(p.at.line) +
                                         ") and on the grid; give it in one of them");
       SweepParam param{spec, {}, object.keyPlaces[i]};
+      std::set<std::string> seen;  // a number by its value: 1000 and 1e3 are one cell
       const bool repeatable = spec->kind == ParamKind::Override || spec->kind == ParamKind::RendererField;
       if (spec->kind == ParamKind::Path && value.kind == JsonValue::Kind::Object && axis) {
         param.values = glob(value);
@@ -181,8 +189,12 @@ private:
           fail(value.at, axis ? "an empty list: a grid axis needs at least one value" : "an empty list");
         for (const JsonValue& item : value.items) {
           std::string v = checked(*spec, item);
-          if (std::find(param.values.begin(), param.values.end(), v) != param.values.end())
-            fail(item.at, "'" + item.text + "' is given twice for \"" + key + "\": the two cells would be the same");
+          std::ostringstream identity;
+          if (item.kind == JsonValue::Kind::Number) identity.precision(17), identity << item.number;
+          else identity << v;
+          if (!seen.insert(identity.str()).second)
+            fail(item.at, "'" + (item.kind == JsonValue::Kind::String || item.kind == JsonValue::Kind::Number ? item.text : v) +
+                              "' is given twice for \"" + key + "\": the two cells would be the same");
           param.values.push_back(std::move(v));
         }
       } else if (axis) {
@@ -204,6 +216,8 @@ private:
       case ParamKind::Number:
         if (v.kind != JsonValue::Kind::Number || !std::isfinite(v.number))
           fail(v.at, v.kindName() + std::string(" where ") + expected);
+        if (spec.integer && (!v.integer || v.text.find_first_of(".eE") != std::string::npos))
+          fail(v.at, "\"" + spec.name + "\" " + v.text + " is not a whole number (" + spec.help + ")");
         if (v.number < spec.lo || v.number > spec.hi) {
           std::ostringstream range;
           range << spec.lo << " to " << spec.hi;
@@ -236,6 +250,8 @@ private:
   }
 
   std::string inFolder(const std::string& written, Place at) const {
+    if (std::any_of(written.begin(), written.end(), [](char c) { return std::iscntrl(static_cast<unsigned char>(c)); }))
+      fail(at, "a control character in the file name '" + written + "'");
     const fs::path p = fs::weakly_canonical(sweep_.folder / written);
     if (!inside(sweep_.folder, p))
       fail(at, "'" + written + "' lies outside the sweep's folder " + sweep_.folder.string() +
@@ -253,8 +269,14 @@ private:
     const JsonValue& pattern = v.members[0].second;
     if (fs::path(pattern.text).is_absolute() || pattern.text.find("..") != std::string::npos)
       fail(pattern.at, "the glob '" + pattern.text + "' must name files below the sweep's folder (no '..', not absolute)");
+    // The folder's own name is matched literally, only the pattern as a glob.
+    std::string folder;
+    for (const char c : sweep_.folder.string() + "/") {
+      if (std::string_view("*?[\\").find(c) != std::string_view::npos) folder += '\\';
+      folder += c;
+    }
     glob_t g{};
-    const int r = ::glob((sweep_.folder / pattern.text).c_str(), GLOB_NOSORT, nullptr, &g);
+    const int r = ::glob((folder + pattern.text).c_str(), GLOB_NOSORT, nullptr, &g);
     std::vector<std::string> found;
     for (std::size_t i = 0; r == 0 && i < g.gl_pathc; ++i) found.emplace_back(g.gl_pathv[i]);
     globfree(&g);

@@ -43,7 +43,7 @@ const std::vector<VerbSpec>& sweepVerbs() {
         {"stiffness", ParamKind::Number, "--stiffness", false, 0, 100000, "hand stiffness, N/m"},
         {"scenario", ParamKind::Text, "--scenario", false, 0, 0, "a scenario, e.g. slide-50mm/s"},
         {"drop", ParamKind::Number, "--drop", false, 0, 0.5, "fraction of device samples dropped"},
-        {"seed", ParamKind::Number, "--seed", false, 0, 1e18, "seed of the dropped samples"}},
+        {"seed", ParamKind::Number, "--seed", false, 0, 1e18, "seed of the dropped samples", true}},
        {"--csv", "result.csv"},
        "result.csv",
        "the closed loop's passivity, limit cycles and release per grip and scenario (the soak grid)"},

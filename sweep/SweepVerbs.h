@@ -25,6 +25,7 @@ struct ParamSpec {
   bool required = false;
   double lo = 0.0, hi = 0.0;  // Number's range
   std::string help;
+  bool integer = false;  // Number: whole numbers only
 };
 
 struct VerbSpec {

@@ -119,6 +119,11 @@ def check_local(app, source, work):
             p.kill()
             fail("two cells did not finish within 120 s")
         time.sleep(0.05)
+    # One executor at a time on a results folder.
+    second = run([app, "sweep", sweep, "--local"])
+    if second.returncode == 0 or "is in use by another `millsim sweep`" not in second.stderr:
+        p.kill()
+        fail("a second --local on the same results folder was not refused (exit %d)" % second.returncode)
     p.send_signal(signal.SIGINT)
     text = p.communicate(timeout=60)[0]
     print(text, flush=True)

@@ -60,6 +60,13 @@ TEST(SweepFile, CellsVaryTheLastAxisFastestAndCarryTheirCommand) {
   EXPECT_EQ(shellQuoted({"a b", "it's", "x=1"}), "'a b' 'it'\\''s' x=1");
 }
 
+TEST(SweepFile, ANameFromTheFileIsOneWord) {
+  Folder f;
+  SweepContext context;
+  const Sweep s = readSweep(f.dir.write("my grid #2.json", kReplay + R"("grid": {"rate": [1000]}})"), context);
+  EXPECT_EQ(s.name, "my_grid__2");
+}
+
 TEST(SweepFile, AGlobOfSessionLogsIsOneAxisInNaturalOrder) {
   Folder f;
   const Sweep s = f.read(R"({"verb": "replay", "fixed": {"scene": "scene.x3d"}, "grid": {"trajectory": {"glob": "logs/*.csv"}}})");
@@ -89,6 +96,11 @@ TEST(SweepFile, MistakesAreRefusedWithTheirLineAndWhatWasExpected) {
   expectError(kReplay + "\n \"grid\": {\"rate\": []}}", "grid.json:2:19: an empty list: a grid axis needs at least one value");
   expectError(kReplay + "\n \"grid\": {\"rate\": [0]}}", "grid.json:2:20: \"rate\" 0 is outside 1 to 20000 (haptic rate, Hz)");
   expectError(kReplay + "\n \"grid\": {\"rate\": [1000, 1000]}}", "grid.json:2:26: '1000' is given twice for \"rate\"");
+  expectError(kReplay + "\n \"grid\": {\"rate\": [1000, 1e3]}}", "grid.json:2:26: '1e3' is given twice for \"rate\"");
+  expectError(R"({"verb": "bench stability", "fixed": {"seed": 1.5}, "grid": {"mass": [0.1]}})",
+              "grid.json:1:47: \"seed\" 1.5 is not a whole number");
+  expectError("{\"verb\": \"replay\", \"grid\": [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]}",
+              "lists and objects nested deeper than 64");
   expectError(kReplay + "\n \"grid\": {\"scene\": [\"scene.x3d\"]}}",
               "grid.json:2:11: \"scene\" is both fixed (line 1) and on the grid");
   expectError(R"({"verb": "replay", "grid": {"trajectory": ["path.csv"]}})",
