@@ -52,5 +52,9 @@ bool isPhantomLabelsUrl(const std::string& url);
 VoxelVolume loadPhantomLabels(const std::string& url);
 // Density of the phantom at a point (metres, tooth frame centred like the volume).
 float toothPhantomDensity(const glm::dvec3& p, bool socket);
+// The value makeToothPhantom (makeToothPhantomLabels) gives voxel ijk, computed
+// alone: what the sparse build must equal voxel for voxel.
+float toothPhantomVoxel(const ToothPhantomOptions& options, glm::ivec3 ijk);
+int toothPhantomLabelVoxel(const ToothPhantomOptions& options, glm::ivec3 ijk);
 
 }  // namespace millsim
