@@ -146,10 +146,77 @@ bool blockIsAir(const ToothPhantomOptions& o, const glm::dvec3& centre, double h
   return !o.socket || box(centre, {0, -6.0, 0}, {9.5, 6.5, 7.0}) > halfDiagonal + hmm;
 }
 
+// A block deep inside one tissue, far from every surface its value depends
+// on, has one value: each coverage there is exactly 0 or 1, so every voxel's
+// arithmetic gives the same number, and so does the block's centre's. The
+// margins are the distances' Lipschitz bounds (under 1.15; the enamel's
+// boundary tooth + enamelThickness(y) under 1.85) times the half-diagonal,
+// plus a voxel. Empty when the block is not so.
+struct DeepInside {
+  bool inside = false;
+  bool enamelSide = false;  // tooth + enamelThickness ≥ 0 throughout
+};
+DeepInside deepInside(const ToothPhantomOptions& o, const glm::dvec3& c, double halfDiagonal) {
+  const double hmm = o.voxelSize * 1000.0, margin = 1.5 * halfDiagonal + hmm;
+  const double tooth = toothDistance(c);
+  // Past the cementum's 0.15 mm too: the labels' root layer.
+  if (!(tooth < -(margin + kCementumThickness))) return {};
+  if (!(pulpDistance(c) > margin)) return {};
+  const double dd = tooth + enamelThickness(c.y);
+  if (!(std::abs(dd) > 2.0 * halfDiagonal + hmm)) return {};
+  // The labels' enamel/cementum split at the junction, and the socket's bone box.
+  if (dd > 0.0 && !(std::abs(c.y - (kCej - 0.5)) > halfDiagonal + hmm)) return {};
+  if (o.socket && !(std::abs(box(c, {0, -6.0, 0}, {9.5, 6.5, 7.0})) > halfDiagonal + hmm)) return {};
+  return {true, dd > 0.0};
+}
+
+// Fills voxels lo..hi (inclusive): nothing where no voxel can hold material,
+// one value where the block is deep inside one tissue, else halves (down to
+// 2³ voxels, then voxel by voxel). Whether any value is above `outside`.
+template <class F, class At>
+bool fillBlock(const ToothPhantomOptions& o, glm::ivec3 lo, glm::ivec3 hi, float outside, F& value, At&& at) {
+  const double hmm = o.voxelSize * 1000.0;
+  const glm::dvec3 centre = 0.5 * (voxelPosition(o, lo) + voxelPosition(o, hi));
+  const double halfDiagonal = 0.5 * hmm * glm::length(glm::dvec3(hi - lo));
+  if (blockIsAir(o, centre, halfDiagonal)) return false;
+  if (deepInside(o, centre, halfDiagonal).inside) {
+    const float v = value(centre, hmm);
+    if (!(v > outside)) return false;
+    for (int k = lo.z; k <= hi.z; ++k)
+      for (int j = lo.y; j <= hi.y; ++j)
+        for (int i = lo.x; i <= hi.x; ++i) at(openvdb::Coord(i, j, k)) = v;
+    return true;
+  }
+  const glm::ivec3 size = hi - lo + 1;
+  if (size.x > 2 || size.y > 2 || size.z > 2) {
+    const glm::ivec3 mid = lo + (size + 1) / 2;  // the first voxel of the upper halves
+    bool any = false;
+    for (int c = 0; c < 8; ++c) {
+      const glm::ivec3 a((c & 1) ? mid.x : lo.x, (c & 2) ? mid.y : lo.y, (c & 4) ? mid.z : lo.z);
+      const glm::ivec3 b((c & 1) ? hi.x : mid.x - 1, (c & 2) ? hi.y : mid.y - 1, (c & 4) ? hi.z : mid.z - 1);
+      if (a.x <= b.x && a.y <= b.y && a.z <= b.z) any |= fillBlock(o, a, b, outside, value, at);
+    }
+    return any;
+  }
+  bool any = false;
+  for (int k = lo.z; k <= hi.z; ++k)
+    for (int j = lo.y; j <= hi.y; ++j)
+      for (int i = lo.x; i <= hi.x; ++i) {
+        const glm::dvec3 p = voxelPosition(o, {i, j, k});
+        if (farFromTheTooth(o, p)) continue;
+        const float v = value(p, hmm);
+        if (!std::isfinite(v)) throw VolumeError("phantom:tooth: a non-finite density (a bug in the phantom)");
+        at(openvdb::Coord(i, j, k)) = v;
+        any |= v > outside;
+      }
+  return any;
+}
+
 // Builds a sparse grid by a pure function of each voxel's position, a leaf
 // (8³ voxels) at a time on TBB's threads: only blocks that may hold material
-// are computed, and no dense copy of the box is ever made (at 25 µm the box is
-// 738 M voxels, 3 GB of floats, the tooth a tenth of it). Values at or below
+// are computed (a block deep inside one tissue by its centre alone), and no
+// dense copy of the box is ever made (at 25 µm the box is 738 M voxels, 3 GB
+// of floats, the tooth a tenth of it). Values at or below
 // `outside` stay background, as VolumeBuilder stores them: any split over
 // threads gives the same grid.
 template <class F>
@@ -157,27 +224,16 @@ VoxelVolume fillPhantom(const ToothPhantomOptions& o, float outside, F&& value) 
   using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
   constexpr int kLeaf = int(Leaf::DIM);
   const glm::ivec3 n = o.dims, blocks = (n + kLeaf - 1) / kLeaf;
-  const double hmm = o.voxelSize * 1000.0;
   std::vector<std::unique_ptr<Leaf>> leaves(std::size_t(blocks.x) * blocks.y * blocks.z);
   tbb::parallel_for(0, blocks.z, [&](int bz) {
     std::array<float, Leaf::SIZE> values;
     for (int by = 0; by < blocks.y; ++by)
       for (int bx = 0; bx < blocks.x; ++bx) {
         const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kLeaf, hi = glm::min(lo + kLeaf, n) - 1;
-        const glm::dvec3 centre = 0.5 * (voxelPosition(o, lo) + voxelPosition(o, hi));
-        if (blockIsAir(o, centre, 0.5 * hmm * glm::length(glm::dvec3(hi - lo)))) continue;
-        bool material = false;
         values.fill(outside);
-        for (int k = lo.z; k <= hi.z; ++k)
-          for (int j = lo.y; j <= hi.y; ++j)
-            for (int i = lo.x; i <= hi.x; ++i) {
-              const glm::dvec3 p = voxelPosition(o, {i, j, k});
-              if (farFromTheTooth(o, p)) continue;
-              const float v = value(p, hmm);
-              if (!std::isfinite(v)) throw VolumeError("phantom:tooth: a non-finite density (a bug in the phantom)");
-              values[Leaf::coordToOffset(openvdb::Coord(i, j, k))] = v;
-              material |= v > outside;
-            }
+        const bool material = fillBlock(o, lo, hi, outside, value, [&](const openvdb::Coord& c) -> float& {
+          return values[Leaf::coordToOffset(c)];
+        });
         if (!material) continue;
         auto leaf = std::make_unique<Leaf>(openvdb::Coord(lo.x, lo.y, lo.z), outside, false);
         for (openvdb::Index i = 0; i < Leaf::SIZE; ++i)
