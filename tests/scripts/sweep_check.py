@@ -17,6 +17,7 @@
 Exits 0 when every check holds, else 1 saying which did not.
 """
 import filecmp
+import getpass
 import os
 import shutil
 import signal
@@ -201,7 +202,8 @@ class Cluster:
         conf = "\n".join([
             "ClusterName=millsimtest",
             "SlurmctldHost=%s(127.0.0.1)" % self.host,
-            "SlurmUser=root", "SlurmdUser=root",
+            # Whoever runs the test (root on CI): the daemons need no other account.
+            "SlurmUser=%s" % getpass.getuser(), "SlurmdUser=%s" % getpass.getuser(),
             "SlurmctldPort=%d" % free_port(), "SlurmdPort=%d" % free_port(),
             "AuthType=auth/munge", "CredType=cred/munge", "AuthInfo=socket=%s" % self.socket,
             "StateSaveLocation=%s/state" % d, "SlurmdSpoolDir=%s/spool" % d,
