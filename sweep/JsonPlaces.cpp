@@ -83,7 +83,7 @@ public:
     for (std::size_t i = 0; i < o.members.size(); ++i)
       if (o.members[i].first == k)
         fail(at, "\"" + k + "\" is given twice in this object (first at line " + std::to_string(o.keyPlaces[i].line) + ")");
-    o.members.emplace_back(k, JsonValue{});
+    o.members.push_back(JsonMember{k, JsonValue{}});
     o.keyPlaces.push_back(at);
     return true;
   }

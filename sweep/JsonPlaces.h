@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace millsim::sweep {
@@ -22,6 +21,8 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+struct JsonMember;
+
 struct JsonValue {
   enum class Kind { Null, Bool, Number, String, Array, Object };
   Kind kind = Kind::Null;
@@ -31,10 +32,16 @@ struct JsonValue {
   bool integer = false;  // written without a fraction or exponent
   std::string text;      // a string's value; a number as written
   std::vector<JsonValue> items;                          // an array's
-  std::vector<std::pair<std::string, JsonValue>> members;  // an object's, in file order
+  std::vector<JsonMember> members;  // an object's, in file order
   std::vector<Place> keyPlaces;                          // where each member's key is
 
   const char* kindName() const;
+};
+
+// Not std::pair: a pair needs JsonValue complete, which it is not inside itself.
+struct JsonMember {
+  std::string first;  // the key
+  JsonValue second;   // the value
 };
 
 // Throws SweepError "FILE:LINE:COLUMN: not JSON: ..." on a syntax error, and

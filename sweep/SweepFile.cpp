@@ -141,7 +141,9 @@ private:
   void slurm(const JsonValue& v) {
     if (v.kind != JsonValue::Kind::Object) fail(v.at, "\"slurm\" is " + std::string(v.kindName()) + "; expected an object");
     for (std::size_t i = 0; i < v.members.size(); ++i) {
-      const auto& [key, value] = v.members[i];
+      // Named references, not a structured binding: clang 14 cannot capture those in a lambda.
+      const std::string& key = v.members[i].first;
+      const JsonValue& value = v.members[i].second;
       auto word = [&](const char* allowed, const char* what) {
         const bool ok = value.kind == JsonValue::Kind::String && !value.text.empty() && value.text.size() <= 64 &&
                         std::all_of(value.text.begin(), value.text.end(), [&](char c) {

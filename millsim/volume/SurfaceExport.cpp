@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -64,14 +65,20 @@ std::string safeName(const std::string& name) {
   return s.empty() ? "solid" : s;
 }
 
+// Written to FILE.tmp and renamed over FILE once whole: a failed write
+// leaves no truncated mesh behind.
 struct File {
   std::FILE* f;
-  std::filesystem::path path;
-  File(const std::filesystem::path& p, const char* mode) : f(std::fopen(p.c_str(), mode)), path(p) {
+  std::filesystem::path path, tmp;
+  File(const std::filesystem::path& p, const char* mode) : f(nullptr), path(p), tmp(p.string() + ".tmp") {
+    f = std::fopen(tmp.c_str(), mode);
     if (!f) throw std::runtime_error(p.string() + ": cannot open it for writing: " + std::strerror(errno));
   }
   ~File() {
-    if (f) std::fclose(f);
+    if (!f) return;
+    std::fclose(f);
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
   }
   void write(const void* data, std::size_t n) {
     if (std::fwrite(data, 1, n, f) != n) fail();
@@ -79,7 +86,10 @@ struct File {
   void close() {
     const int r = std::fclose(f);
     f = nullptr;
-    if (r != 0) fail();
+    std::error_code ec;
+    if (r != 0) std::filesystem::remove(tmp, ec), fail();
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw std::runtime_error(path.string() + ": writing failed: " + ec.message());
   }
   [[noreturn]] void fail() const { throw std::runtime_error(path.string() + ": writing failed: " + std::strerror(errno)); }
 };

@@ -2,16 +2,17 @@
 // SurfaceExport: the milled volume's surface as closed triangle meshes — the
 // whole material's, or one solid per tissue — and writers for STL, OBJ and
 // PLY, so that a trainee's preparation can be compared with an ideal one in
-// any mesh tool (`--save-mesh`), and a saved tooth loads back as a mesh url.
+// any mesh tool (`--save-mesh`), and a saved .obj loads back as a mesh url.
 //
 // What a solid is: the surface density == isoValue of the voxels (samples at
 // voxel centres, as graphics meshes them), extracted with OpenVDB's
 // volumeToMesh over the sparse grid. Unlike the graphics mesh it is closed
 // where material reaches the data's border (outside the grid is air). A
-// tissue's solid is that surface of the voxels labelled with it; two
+// tissue's solid is that surface of the voxels labelled with it; two hard
 // tissues' solids meet without gap or overlap; a soft tissue (the pulp), whose
-// density is below the isoValue, is drawn as far as milling left its
-// original density, as a cut plane's section draws it.
+// density is below the isoValue, is drawn at its own level, as far as milling
+// left its original density (as a cut plane's section draws it), a fraction
+// of a voxel inside the cavity its neighbours leave.
 #include <cstddef>
 #include <filesystem>
 #include <string>

@@ -241,7 +241,9 @@ VoxelVolume fillPhantom(const ToothPhantomOptions& o, float outside, F&& value) 
         leaves[(std::size_t(bz) * blocks.y + by) * blocks.x + bx] = std::move(leaf);
       }
   });
+  openvdb::initialize();  // idempotent and thread-safe
   VoxelVolume::Grid::Ptr grid = VoxelVolume::Grid::create(outside);
+  grid->setName("density");  // as VolumeBuilder names the grids the readers make
   for (auto& leaf : leaves)
     if (leaf) grid->tree().addLeaf(leaf.release());
   return VoxelVolume(grid, n, glm::dvec3(o.voxelSize), outside);

@@ -438,7 +438,6 @@ private:
       }
     }
     readFields(doc, el, *node, tag, loc);
-    applyOverrides(*node);
 
     // Plugins register their node types before the rest of the file is read.
     if (auto* lib = dynamic_cast<ImportLibrary*>(node.get())) importLibrary(doc, *lib, loc);
@@ -467,6 +466,8 @@ private:
     });
     ancestors.pop_back();
 
+    // After the children: a proto body's IS connections set fields too.
+    applyOverrides(*node);
     if (auto* inl = dynamic_cast<Inline*>(node.get())) loadInline(doc, *inl, loc);
     node->initialize(sink_);
     return node;
@@ -883,12 +884,14 @@ private:
 
   static SourceLocation overrideLocation(const LoadOptions::FieldOverride& o) { return {"--set " + o.text(), 0, 0}; }
 
-  // Field overrides (LoadOptions::overrides) on a node whose own attributes are read.
+  // Field overrides (LoadOptions::overrides) on a node whose attributes,
+  // children and IS connections are read. A mistake is reported once per
+  // override, not once per node of its type.
   void applyOverrides(Node& node) {
     for (std::size_t i = 0; i < options_.overrides.size(); ++i) {
       const LoadOptions::FieldOverride& o = options_.overrides[i];
       if (node.typeName() != o.type) continue;
-      ++overridesApplied_[i];
+      if (overridesApplied_[i]++ > 0 && overrideFailed_[i]) continue;
       Field* f = node.field(o.field);
       if (!f || !settableInFile(f->access()) || f->isNodeField()) {
         std::vector<std::string> names;
@@ -896,6 +899,7 @@ private:
           if (settableInFile(nf->access()) && !nf->isNodeField()) names.emplace_back(nf->name());
         sink_.error(overrideLocation(o), o.type + " has no field '" + o.field + "' a value can set" +
                                              didYouMean(closestNames(o.field, names)));
+        overrideFailed_[i] = true;
         continue;
       }
       try {
@@ -903,12 +907,14 @@ private:
       } catch (const ValueError& e) {
         sink_.error(overrideLocation(o), "bad value '" + o.value + "' for " + std::string(fieldTypeName(f->type())) +
                                              " field '" + o.field + "' of " + o.type + ": " + e.what());
+        overrideFailed_[i] = true;
       }
     }
   }
 
   const LoadOptions& options_;
   std::vector<int> overridesApplied_ = std::vector<int>(options_.overrides.size(), 0);
+  std::vector<bool> overrideFailed_ = std::vector<bool>(options_.overrides.size(), false);
   DiagnosticSink sink_;
   std::unique_ptr<Scene> scene_;
   std::vector<fs::path> inlineStack_;

@@ -236,6 +236,28 @@ TEST(Loader, FieldOverridesSetEveryNodeOfTheTypeAndNameTheirMistakes) {
             std::string::npos);
   EXPECT_NE(fails("Cone.height=1").find("--set Cone.height=1: error: the scene has no Cone whose field to set"), std::string::npos);
   EXPECT_NE(fails("Sphere.radius=big").find("bad value 'big' for SFFloat field 'radius' of Sphere"), std::string::npos);
+  // Inside a prototype, after the IS connection that sets the field from the instance.
+  LoadOptions inProto;
+  inProto.overrides = {*parseFieldOverride("Sphere.radius=0.5")};
+  auto p = loadSceneString(x3d(R"(
+    <ProtoDeclare name="Ball"><ProtoInterface><field name="r" type="SFFloat" accessType="initializeOnly" value="2"/></ProtoInterface>
+      <ProtoBody><Shape><Sphere DEF="Inner"><IS><connect nodeField="radius" protoField="r"/></IS></Sphere></Shape></ProtoBody>
+    </ProtoDeclare>
+    <ProtoInstance name="Ball"/>)"), "t.x3d", builtinRegistry(), inProto);
+  ASSERT_TRUE(p.ok()) << p.report();
+  int spheres = 0;
+  for (const Sphere* s : p.scene->nodesOfType<Sphere>()) {
+    ++spheres;
+    EXPECT_FLOAT_EQ(s->radius.get(), 0.5f);
+  }
+  EXPECT_EQ(spheres, 1);
+  // A mistake once, however many nodes the type has.
+  LoadOptions twice;
+  twice.overrides = {*parseFieldOverride("Sphere.radus=1")};
+  const std::string many = loadSceneString(x3d(R"(<Shape><Sphere/></Shape><Shape><Sphere/></Shape>)"), "t.x3d",
+                                           builtinRegistry(), twice).report();
+  EXPECT_NE(many.find("has no field 'radus'"), std::string::npos) << many;
+  EXPECT_EQ(many.find("has no field 'radus'"), many.rfind("has no field 'radus'")) << many;
   EXPECT_FALSE(parseFieldOverride("radius=1"));
   EXPECT_FALSE(parseFieldOverride("Sphere.radius"));
   EXPECT_FALSE(parseFieldOverride(".radius=1"));

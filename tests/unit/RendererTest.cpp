@@ -387,11 +387,6 @@ TEST_P(EveryRenderer, ABurrPushedPastAConvexEdgeSlidesOffItsBisector) {
   EXPECT_LT(row->directionRms, 8.0) << "edge: degrees RMS against the rigid burr";
 }
 
-// The physical suite compares each renderer's output at rest: held ten times
-// as long, the figures do not move. A fixed 60-frame hold failed it: #3's
-// coupled tool was still sliding off the edge's saddle (edge direction 4.7°
-// after 60 frames, 0.47° at rest at h = 0.1 mm). The edge (saddles) and the
-// hole (wedges) are where a renderer takes longest to rest.
 // A scene author's mesh (issue 45): the ball as a 20 480-triangle mesh,
 // voxelised as a mesh url is, feels as the ball voxelised from its exact
 // distance (the same lattice): force and direction errors within 0.5
@@ -407,6 +402,11 @@ TEST_P(EveryRenderer, AMeshBallFeelsAsTheExactBallDoes) {
   EXPECT_EQ(mesh->missed, 0.0);
 }
 
+// The physical suite compares each renderer's output at rest: held ten times
+// as long, the figures do not move. A fixed 60-frame hold failed it: #3's
+// coupled tool was still sliding off the edge's saddle (edge direction 4.7°
+// after 60 frames, 0.47° at rest at h = 0.1 mm). The edge (saddles) and the
+// hole (wedges) are where a renderer takes longest to rest.
 TEST_P(EveryRenderer, ThePhysicalSuiteComparesTheOutputAtRest) {
   measure::PhysicalConfig held;
   held.scenes = {"edge", "hole"};
