@@ -1,12 +1,14 @@
-// Slice stacks (VolumeIO.h, readSliceStack): one greyscale TIFF per slice in
-// a folder or a printf-style pattern, or the pages of one multi-page TIFF, as
-// micro-CT scanners of extracted teeth write them. libtiff reads every page
-// (any compression it knows); MillSim checks the shape of each against the
-// first before reading its pixels, and streams the slices into a
-// VolumeBuilder a row at a time, so memory is the sparse grid and one slab.
-// The pixel size comes from the VolumeObject's voxelSize, a SkyScan-style
-// .log beside the slices ("Image Pixel Size (um)="), or the TIFF resolution
-// tags, in that order; slices are as far apart as pixels are wide.
+// Slice stacks (VolumeIO.h, readSliceStack): one greyscale TIFF or PNG per
+// slice in a folder or a printf-style pattern, or the pages of one multi-page
+// TIFF, as micro-CT scanners of extracted teeth write them. libtiff reads
+// every TIFF page (any compression it knows), libpng every PNG (rows read
+// one by one, 16-bit samples exactly as stored: no gamma); MillSim checks the
+// shape of each against the first before reading its pixels, and streams the
+// slices into a VolumeBuilder a row at a time, so memory is the sparse grid
+// and one slab. The pixel size comes from the VolumeObject's voxelSize, a
+// SkyScan-style .log beside the slices ("Image Pixel Size (um)="), or the
+// TIFF resolution tags or PNG pHYs chunk, in that order; slices are as far
+// apart as pixels are wide.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -20,7 +22,10 @@
 #include <string>
 #include <vector>
 
+#include <csetjmp>
+
 #include <glm/vec2.hpp>
+#include <png.h>
 #include <tiffio.h>
 
 #include "millsim/volume/MedicalModule.h"
@@ -142,6 +147,84 @@ void readPage(TIFF* t, const Page& p, VolumeBuilder& builder, const std::string&
   }
 }
 
+// One PNG slice, read with libpng's row API: its errors longjmp back into
+// the call that set the jump, which throws (nothing with a destructor is
+// made between the setjmp and the libpng calls it guards).
+class PngSlice {
+public:
+  explicit PngSlice(const fs::path& file) : name_(file.string()) {
+    file_ = std::fopen(file.c_str(), "rb");
+    if (!file_) throw VolumeError(name_ + ": cannot open it");
+    unsigned char magic[8] = {};
+    if (std::fread(magic, 1, 8, file_) != 8 || png_sig_cmp(magic, 0, 8) != 0)
+      throw VolumeError(name_ + ": not a PNG file (its first bytes are not PNG's signature)");
+    png_ = png_create_read_struct(PNG_LIBPNG_VER_STRING, this, &PngSlice::onError, &PngSlice::onWarning);
+    info_ = png_ ? png_create_info_struct(png_) : nullptr;
+    if (!info_) throw VolumeError(name_ + ": libpng could not start");
+    if (setjmp(png_jmpbuf(png_))) throw VolumeError(name_ + ": not a PNG libpng can read (" + message_ + ")");
+    png_init_io(png_, file_);
+    png_set_sig_bytes(png_, 8);
+    png_read_info(png_, info_);
+  }
+  ~PngSlice() {
+    if (png_) png_destroy_read_struct(&png_, info_ ? &info_ : nullptr, nullptr);
+    if (file_) std::fclose(file_);
+  }
+  PngSlice(const PngSlice&) = delete;
+  PngSlice& operator=(const PngSlice&) = delete;
+
+  Page page() {
+    if (setjmp(png_jmpbuf(png_))) throw VolumeError(name_ + ": " + message_);
+    const png_uint_32 w = png_get_image_width(png_, info_), h = png_get_image_height(png_, info_);
+    const int bits = png_get_bit_depth(png_, info_), colour = png_get_color_type(png_, info_);
+    if (colour != PNG_COLOR_TYPE_GRAY)
+      throw VolumeError(name_ + " is not one grey channel (PNG colour type " + std::to_string(colour) +
+                        "); a slice is greyscale without alpha");
+    if (bits != 8 && bits != 16)
+      throw VolumeError(name_ + " has " + std::to_string(bits) + "-bit pixels; slices are 8 or 16-bit");
+    if (w == 0 || h == 0 || w > (1u << 16) || h > (1u << 16))
+      throw VolumeError(name_ + " is " + std::to_string(w) + " × " + std::to_string(h) + " pixels; expected 1 to 65536 a side");
+    if (png_get_interlace_type(png_, info_) != PNG_INTERLACE_NONE)
+      throw VolumeError(name_ + " is interlaced; slices are read by rows: save them without interlacing");
+    Page p{glm::ivec2(int(w), int(h)), bits, false, false, false, 0.0};
+    png_uint_32 xppm = 0, yppm = 0;
+    int unit = 0;
+    if (png_get_pHYs(png_, info_, &xppm, &yppm, &unit) && unit == PNG_RESOLUTION_METER && xppm > 0)
+      p.pixelMm = 1000.0 / double(xppm);
+    return p;
+  }
+
+  void read(const Page& p, VolumeBuilder& builder) {
+    // The buffers are members: nothing is constructed between the setjmp and the longjmp.
+    row_.assign(std::size_t(p.size.x) * std::size_t(p.bits / 8), 0);
+    values_.assign(std::size_t(p.size.x), 0.f);
+    if (setjmp(png_jmpbuf(png_))) throw VolumeError(name_ + ": " + message_ + "; is the file cut short?");
+    for (int y = 0; y < p.size.y; ++y) {
+      png_read_row(png_, row_.data(), nullptr);
+      for (int x = 0; x < p.size.x; ++x)
+        // PNG stores 16-bit samples big-endian.
+        values_[std::size_t(x)] = p.bits == 8 ? float(row_[std::size_t(x)])
+                                              : float(unsigned(row_[std::size_t(x) * 2]) << 8 | row_[std::size_t(x) * 2 + 1]);
+      builder.append(values_.data(), values_.size());
+    }
+  }
+
+private:
+  static void onError(png_structp png, png_const_charp message) {
+    auto* self = static_cast<PngSlice*>(png_get_error_ptr(png));
+    self->message_ = message ? message : "libpng error";
+    png_longjmp(png, 1);
+  }
+  static void onWarning(png_structp, png_const_charp) {}
+
+  std::string name_, message_;
+  std::vector<unsigned char> row_;
+  std::vector<float> values_;
+  std::FILE* file_ = nullptr;
+  png_structp png_ = nullptr;
+  png_infop info_ = nullptr;
+};
+
 // Digit runs compare by value: slice_2 before slice_10.
 bool naturalLess(const std::string& a, const std::string& b) {
   std::size_t i = 0, j = 0;
@@ -168,6 +251,8 @@ bool isTiff(const fs::path& p) {
   const std::string ext = asciiLower(p.extension().string());
   return ext == ".tif" || ext == ".tiff";
 }
+
+bool isPng(const fs::path& p) { return asciiLower(p.extension().string()) == ".png"; }
 
 // "Image Pixel Size (um)=12.5" in a .log beside the slices (SkyScan's reconstruction log).
 std::optional<double> pixelSizeFromLog(const fs::path& folder) {
@@ -220,7 +305,7 @@ std::vector<fs::path> sliceFiles(const fs::path& folderOrPattern) {
   }
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(folderOrPattern, ec))
-    if (e.is_regular_file(ec) && isTiff(e.path())) {
+    if (e.is_regular_file(ec) && (isTiff(e.path()) || isPng(e.path()))) {
       if (files.size() == kMaxSlices)
         throw VolumeError(text + ": more than " + std::to_string(kMaxSlices) + " slices; MillSim reads at most that many");
       files.push_back(e.path());
@@ -228,7 +313,12 @@ std::vector<fs::path> sliceFiles(const fs::path& folderOrPattern) {
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     return naturalLess(a.filename().string(), b.filename().string());
   });
-  if (files.empty()) throw VolumeError(text + ": no .tif or .tiff slices in the folder");
+  if (files.empty()) throw VolumeError(text + ": no .tif, .tiff or .png slices in the folder");
+  // One kind a stack: a TIFF stack with a PNG preview beside it is not a stack of both.
+  for (const fs::path& f : files)
+    if (isPng(f) != isPng(files[0]))
+      throw VolumeError(text + " holds both TIFF and PNG slices (" + files[0].filename().string() + ", " +
+                        f.filename().string() + "); a stack is one kind: move the others out");
   return files;
 }
 
@@ -239,10 +329,11 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
   const bool onePerFile = !(fs::is_regular_file(source) && isTiff(source));
   const std::vector<fs::path> files = onePerFile ? sliceFiles(source) : std::vector<fs::path>{source};
   const std::string name = source.string();
+  const bool png = isPng(files[0]);
 
   // The shape: every page must match the first.
-  TiffFile first = openTiff(files[0]);
-  const Page shape = pageOf(first.get(), files[0].string());
+  TiffFile first = png ? nullptr : openTiff(files[0]);
+  const Page shape = png ? PngSlice(files[0]).page() : pageOf(first.get(), files[0].string());
   std::size_t slices = files.size();
   if (!onePerFile) {
     slices = 0;
@@ -262,20 +353,30 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
     if (const auto mm = pixelSizeFromLog(folder.empty() ? fs::path(".") : folder)) voxelSize = glm::dvec3(*mm * 1e-3);
     else if (shape.pixelMm > 0.0) voxelSize = glm::dvec3(shape.pixelMm * 1e-3);
     else
-      throw VolumeError(name + ": no pixel size in the TIFF resolution tags or in a SkyScan .log beside the slices; "
-                               "give the VolumeObject's voxelSize");
+      throw VolumeError(name + ": no pixel size in the " + (png ? "PNG pHYs chunk" : "TIFF resolution tags") +
+                        " or in a SkyScan .log beside the slices; give the VolumeObject's voxelSize");
   }
 
   VolumeBuilder builder(glm::ivec3(shape.size.x, shape.size.y, int(slices)), voxelSize, airValue, name);
-  if (onePerFile) {
+  auto mismatch = [&](const fs::path& f, const Page& p) {
+    if (p.size != shape.size || p.bits != shape.bits || p.isFloat != shape.isFloat)
+      throw VolumeError(f.string() + " is " + describe(p) + "; the first slice, " + files[0].filename().string() +
+                        ", is " + describe(shape));
+  };
+  if (png) {
+    for (const fs::path& f : files) {
+      PngSlice slice(f);
+      const Page p = slice.page();
+      mismatch(f, p);
+      slice.read(p, builder);
+    }
+  } else if (onePerFile) {
     readPage(first.get(), shape, builder, files[0].string());
     first.reset();
     for (std::size_t i = 1; i < files.size(); ++i) {
       TiffFile t = openTiff(files[i]);
       const Page p = pageOf(t.get(), files[i].string());
-      if (p.size != shape.size || p.bits != shape.bits || p.isFloat != shape.isFloat)
-        throw VolumeError(files[i].string() + " is " + describe(p) + "; the first slice, " + files[0].filename().string() +
-                          ", is " + describe(shape));
+      mismatch(files[i], p);
       readPage(t.get(), p, builder, files[i].string());
     }
   } else {

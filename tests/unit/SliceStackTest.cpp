@@ -6,8 +6,11 @@
 // libtiff's writing API.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 
+#include <png.h>
 #include <tiffio.h>
 
 #include "TestFiles.h"
@@ -58,6 +61,34 @@ fs::path writeSlice(const fs::path& file, int z, double pixelMm, int width = kW,
   return file;
 }
 
+// A 16-bit grey PNG slice (libpng's own writer: big-endian samples), with a
+// pHYs chunk when pixelMm > 0; `colour` writes RGB instead (refused).
+fs::path writePngSlice(const fs::path& file, int z, double pixelMm, bool colour = false) {
+  std::FILE* f = std::fopen(file.c_str(), "wb");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  png_init_io(png, f);
+  png_set_IHDR(png, info, kW, kH, 16, colour ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (pixelMm > 0.0) {
+    const png_uint_32 ppm = png_uint_32(std::lround(1000.0 / pixelMm));
+    png_set_pHYs(png, info, ppm, ppm, PNG_RESOLUTION_METER);
+  }
+  png_write_info(png, info);
+  std::vector<unsigned char> row(std::size_t(kW) * (colour ? 6 : 2));
+  for (int y = 0; y < kH; ++y) {
+    for (std::size_t i = 0; i < row.size() / 2; ++i) {
+      const std::uint16_t v = value(int(colour ? i / 3 : i), y, z);
+      row[2 * i] = static_cast<unsigned char>(v >> 8), row[2 * i + 1] = static_cast<unsigned char>(v & 0xff);
+    }
+    png_write_row(png, row.data());
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  std::fclose(f);
+  return file;
+}
+
 // The same voxels as a NRRD, through the project's NRRD writer and reader.
 VoxelVolume throughNrrd(const fs::path& dir) {
   std::vector<float> values;
@@ -96,6 +127,30 @@ TEST(SliceStack, AFolderOfSixteenBitSlicesIsTheNrrdOfTheSameData) {
   EXPECT_NEAR(v.voxelSize().x, 50e-6, 1e-9) << "the pixel size from the resolution tags";
   EXPECT_NEAR(v.voxelSize().z, 50e-6, 1e-9);
   expectSameVoxels(v, throughNrrd(dir.path()));
+}
+
+// PNG slices (16-bit grey), by folder and by pattern: the same voxels, the pixel
+// size from the pHYs chunk; a colour PNG, a folder of both kinds and a PNG cut
+// short are clear errors.
+TEST(SliceStack, SixteenBitPngSlicesAreTheNrrdOfTheSameData) {
+  ScratchDir dir;
+  fs::create_directories(dir.path() / "png");
+  for (int z = 0; z < kSlices; ++z) writePngSlice(dir.path() / "png" / ("rec_" + std::to_string(z) + ".png"), z, 0.05);
+  const VoxelVolume v = readSliceStack(dir.path() / "png", kAir);
+  EXPECT_NEAR(v.voxelSize().x, 50e-6, 1e-9) << "the pixel size from the pHYs chunk";
+  expectSameVoxels(v, throughNrrd(dir.path()));
+  expectSameVoxels(readSliceStack(dir.path() / "png" / "rec_%d.png", kAir), v);
+
+  fs::create_directories(dir.path() / "colour");
+  writePngSlice(dir.path() / "colour" / "c_0.png", 0, 0.05, true);
+  EXPECT_NE(errorOf(dir.path() / "colour").find("c_0.png is not one grey channel (PNG colour type 2)"), std::string::npos)
+      << errorOf(dir.path() / "colour");
+  writeSlice(dir.path() / "png" / "rec_99.tif", 0, 0.05);
+  EXPECT_NE(errorOf(dir.path() / "png").find("holds both TIFF and PNG slices"), std::string::npos) << errorOf(dir.path() / "png");
+  fs::remove(dir.path() / "png" / "rec_99.tif");
+  fs::resize_file(dir.path() / "png" / "rec_5.png", fs::file_size(dir.path() / "png" / "rec_5.png") / 2);
+  EXPECT_NE(errorOf(dir.path() / "png").find("rec_5.png: "), std::string::npos) << errorOf(dir.path() / "png");
+  EXPECT_NE(errorOf(dir.path() / "png").find("is the file cut short?"), std::string::npos) << errorOf(dir.path() / "png");
 }
 
 TEST(SliceStack, APatternAndAMultiPageTiffReadTheSame) {
