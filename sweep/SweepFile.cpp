@@ -10,8 +10,11 @@
 #include <sstream>
 #include <string_view>
 
+#include "millsim/core/NaturalOrder.h"
+
 namespace millsim::sweep {
 namespace fs = std::filesystem;
+using millsim::naturalLess;
 
 namespace {
 
@@ -22,29 +25,6 @@ std::string listOf(const std::vector<std::string>& names, const char* last = "or
   for (std::size_t i = 0; i < names.size(); ++i)
     s += (i == 0 ? "" : i + 1 == names.size() ? std::string(" ") + last + " " : ", ") + names[i];
   return s;
-}
-
-// "rec_2" before "rec_10": runs of digits compare as numbers.
-bool naturalLess(const std::string& a, const std::string& b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-      std::size_t i2 = i, j2 = j;
-      while (i2 < a.size() && std::isdigit(static_cast<unsigned char>(a[i2]))) ++i2;
-      while (j2 < b.size() && std::isdigit(static_cast<unsigned char>(b[j2]))) ++j2;
-      const std::string x = a.substr(i, i2 - i), y = b.substr(j, j2 - j);
-      const std::string xs = x.substr(std::min(x.find_first_not_of('0'), x.size())),
-                        ys = y.substr(std::min(y.find_first_not_of('0'), y.size()));
-      if (xs.size() != ys.size()) return xs.size() < ys.size();
-      if (xs != ys) return xs < ys;
-      i = i2, j = j2;
-      continue;
-    }
-    if (a[i] != b[j]) return a[i] < b[j];
-    ++i, ++j;
-  }
-  if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
-  return a < b;  // run_01 and run_1: one order everywhere
 }
 
 bool inside(const fs::path& folder, const fs::path& p) {

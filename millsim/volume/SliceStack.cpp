@@ -28,6 +28,7 @@
 #include <png.h>
 #include <tiffio.h>
 
+#include "millsim/core/NaturalOrder.h"
 #include "millsim/volume/MedicalModule.h"
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeBuilder.h"
@@ -224,28 +225,6 @@ private:
   png_structp png_ = nullptr;
   png_infop info_ = nullptr;
 };
-
-// Digit runs compare by value: slice_2 before slice_10.
-bool naturalLess(const std::string& a, const std::string& b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-      std::size_t ie = i, je = j;
-      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
-      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
-      std::string na = a.substr(i, ie - i), nb = b.substr(j, je - j);
-      na.erase(0, std::min(na.find_first_not_of('0'), na.size() - 1));
-      nb.erase(0, std::min(nb.find_first_not_of('0'), nb.size() - 1));
-      if (na.size() != nb.size()) return na.size() < nb.size();
-      if (na != nb) return na < nb;
-      i = ie, j = je;
-    } else {
-      if (a[i] != b[j]) return a[i] < b[j];
-      ++i, ++j;
-    }
-  }
-  return a.size() - i < b.size() - j;
-}
 
 bool isTiff(const fs::path& p) {
   const std::string ext = asciiLower(p.extension().string());

@@ -44,27 +44,30 @@ def run(cmd, **kw):
     return r
 
 
-def make_folder(source, work, name, trajectory_seconds=3.0, rates=RATES):
-    """A sweep folder holding its scene and a short trajectory (the first seconds of mill-and-lean)."""
+def make_folder(source, work, name, trajectory_seconds=3.0, rates=RATES, trajectory="mill-and-lean.csv", coarse=True):
+    """A sweep folder holding its scene and a trajectory's first seconds; `coarse`: the phantom at 0.2 mm."""
     folder = os.path.join(work, name)
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(os.path.join(folder, "trajectories"))
     shutil.copy(os.path.join(source, "x3d/default.x3d"), folder)
-    with open(os.path.join(source, "x3d/trajectories/mill-and-lean.csv")) as f:
+    # The scene's device names mill-and-lean.csv (a replay's --trajectory takes its place).
+    shutil.copy(os.path.join(source, "x3d/trajectories/mill-and-lean.csv"), os.path.join(folder, "trajectories"))
+    with open(os.path.join(source, "x3d/trajectories", trajectory)) as f:
         lines = f.read().splitlines()
     header = next(i for i, l in enumerate(lines) if l.startswith("t,"))
     kept = lines[: header + 1] + [l for l in lines[header + 1 :] if float(l.split(",")[0]) <= trajectory_seconds]
-    with open(os.path.join(folder, "trajectories/mill-and-lean.csv"), "w") as f:
+    with open(os.path.join(folder, "trajectories", trajectory), "w") as f:
         f.write("\n".join(kept) + "\n")
     grid = ", ".join(str(r) for r in rates)
     with open(os.path.join(folder, "grid.json"), "w") as f:
         f.write('{\n  "sweep": "grid",\n  "verb": "replay",\n'
-                '  "fixed": {"scene": "default.x3d", "trajectory": "trajectories/mill-and-lean.csv",\n'
-                # The phantom at 0.2 mm: each cell loads in a quarter of the time.
-                '            "set": ["VolumeObject.url=\\"phantom:tooth?size=128,128,88&voxel=0.0002\\"",\n'
-                '                    "VolumeObject.labelUrl=\\"phantom:tooth-labels?size=128,128,88&voxel=0.0002\\""]},\n'
+                '  "fixed": {"scene": "default.x3d", "trajectory": "trajectories/%s"%s},\n'
                 '  "grid": {"renderer": ["%s"], "rate": [%s]},\n'
-                '  "slurm": {"max_parallel": 2}\n}\n' % ('", "'.join(RENDERERS), grid))
+                '  "slurm": {"max_parallel": 2}\n}\n' % (trajectory, (
+                    # The phantom at 0.2 mm: each cell loads in a quarter of the time.
+                    ',\n            "set": ["VolumeObject.url=\\"phantom:tooth?size=128,128,88&voxel=0.0002\\"",\n'
+                    '                    "VolumeObject.labelUrl=\\"phantom:tooth-labels?size=128,128,88&voxel=0.0002\\""]')
+                    if coarse else "", '", "'.join(RENDERERS), grid))
     return os.path.join(folder, "grid.json")
 
 
@@ -280,7 +283,9 @@ def check_slurm(app, source, work):
         if collected_without_timings(app, sweep, local_out) != collected_without_timings(app, sweep, slurm_out):
             fail("the collected tables of --local and --slurm differ beyond host and cell_seconds")
         # A cell cancelled while it runs is a failed cell; --retry-failed runs only it again.
-        long_sweep = make_folder(source, work, "cancel", trajectory_seconds=8.0, rates=[1000])
+        # Cells of a few seconds (the §8.2 procedure at the phantom's 0.1 mm): one is still running when cancelled.
+        long_sweep = make_folder(source, work, "cancel", trajectory_seconds=40.0, rates=[1000],
+                                 trajectory="section-8-2.csv", coarse=False)
         out = os.path.join(work, "cancel", "grid.sweep")
         r = run([app, "sweep", long_sweep, "--slurm", "--out", out], env=env)
         if r.returncode != 0:
@@ -296,7 +301,14 @@ def check_slurm(app, source, work):
                 fail("no cell of job %s started within 120 s" % job)
             time.sleep(0.1)
         victim = running[0]
-        time.sleep(0.5)
+        # Cancel once the cell's command has started (its folder is made after the task blocks SIGTERM for
+        # itself): a task cancelled before that dies without a status, which is another case.
+        started = os.path.join(out, "cells", "%04d" % int(victim), "command.txt")
+        deadline = time.time() + 60
+        while not os.path.exists(started):
+            if time.time() > deadline:
+                fail("cell %s's command did not start within 60 s of its task running" % victim)
+            time.sleep(0.02)
         run(["scancel", "%s_%s" % (job, victim)], env=env)
         r = run([app, "sweep", long_sweep, "--slurm", "--wait", "--timeout", "300", "--out", out], env=env)
         status = run([app, "sweep", "status", long_sweep, "--out", out], env=env)
