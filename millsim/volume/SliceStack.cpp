@@ -167,10 +167,6 @@ public:
     png_set_sig_bytes(png_, 8);
     png_read_info(png_, info_);
   }
-  ~PngSlice() {
-    if (png_) png_destroy_read_struct(&png_, info_ ? &info_ : nullptr, nullptr);
-    if (file_) std::fclose(file_);
-  }
   PngSlice(const PngSlice&) = delete;
   PngSlice& operator=(const PngSlice&) = delete;
 
@@ -218,12 +214,27 @@ private:
   }
   static void onWarning(png_structp, png_const_charp) {}
 
+  // Freed by a member's destructor, so that a constructor that throws frees them too.
+  struct Handles {
+    std::FILE* file = nullptr;
+    png_structp png = nullptr;
+    png_infop info = nullptr;
+    Handles() = default;
+    Handles(const Handles&) = delete;
+    Handles& operator=(const Handles&) = delete;
+    ~Handles() {
+      if (png) png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+      if (file) std::fclose(file);
+    }
+  };
+
   std::string name_, message_;
   std::vector<unsigned char> row_;
   std::vector<float> values_;
-  std::FILE* file_ = nullptr;
-  png_structp png_ = nullptr;
-  png_infop info_ = nullptr;
+  Handles handles_;
+  std::FILE*& file_ = handles_.file;
+  png_structp& png_ = handles_.png;
+  png_infop& info_ = handles_.info;
 };
 
 bool isTiff(const fs::path& p) {
