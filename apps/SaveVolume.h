@@ -6,8 +6,16 @@
 #include <string>
 
 #include "millsim/core/Scene.h"
+#include "millsim/volume/VolumeObject.h"
 
 namespace millsim::app {
+
+// What --save-volume and --save-mesh share. Before the run: the scene has
+// exactly one VolumeObject, or std::invalid_argument "FLAG writes WHAT; the
+// scene has N VolumeObjects". After it: that node, holding its volume, or
+// std::runtime_error.
+void checkOneVolume(const Scene& scene, const std::string& flag, const std::string& what);
+const VolumeObject& theSavedVolume(const Scene& scene, const std::string& flag);
 
 // Before the run: one volume to save and a writable .vdb path, or
 // std::invalid_argument saying what is wrong.

@@ -71,18 +71,6 @@ std::string duration(double s) {
   return text;
 }
 
-// The cells to run now: not finished, or failed when asked to retry.
-std::vector<std::uint64_t> cellsToRun(const SweepRequest& r, std::uint64_t* done, std::uint64_t* failed) {
-  std::vector<std::uint64_t> todo;
-  for (std::uint64_t i = 0; i < r.sweep.cellCount(); ++i) {
-    const sweep::CellState s = sweep::stateOf(r.out, sweep::cellAt(r.sweep, i));
-    if (s == sweep::CellState::Done) ++*done;
-    else if (s == sweep::CellState::Failed && !r.retryFailed) ++*failed;
-    else todo.push_back(i);
-  }
-  return todo;
-}
-
 int dryRun(const SweepRequest& r) {
   static const char* names[] = {"pending", "done", "failed", "stale"};
   for (std::uint64_t i = 0; i < r.sweep.cellCount(); ++i) {
@@ -95,8 +83,6 @@ int dryRun(const SweepRequest& r) {
 
 int runLocal(const SweepRequest& r) {
   FolderLock lock(r.out);
-  std::uint64_t done = 0, failed = 0;
-  std::vector<std::uint64_t> todo = cellsToRun(r, &done, &failed);
   // Cells a Slurm job of this sweep still holds are not run here too.
   std::set<std::uint64_t> queued;
   try {
@@ -104,10 +90,12 @@ int runLocal(const SweepRequest& r) {
   } catch (const std::exception&) {
     // No Slurm here.
   }
-  todo.erase(std::remove_if(todo.begin(), todo.end(), [&](std::uint64_t i) { return queued.count(i) != 0; }), todo.end());
+  const CellSelection selected = selectCells(r, queued);
+  const std::vector<std::uint64_t>& toRun = selected.toRun;
+  const std::uint64_t done = selected.done, failed = selected.failed;
   const std::uint64_t total = r.sweep.cellCount();
   const unsigned jobs = r.jobs > 0 ? unsigned(r.jobs) : std::max(1u, std::thread::hardware_concurrency());
-  std::cout << "sweep " << r.sweep.name << ": " << total << " cells, " << done << " done before, " << todo.size()
+  std::cout << "sweep " << r.sweep.name << ": " << total << " cells, " << done << " done before, " << toRun.size()
             << " to run here, " << jobs << " at once; results in " << r.out.string() << "\n";
   if (failed) std::cout << "  " << failed << " failed before and left so (--retry-failed runs them again)\n";
   if (!queued.empty()) std::cout << "  " << queued.size() << " in Slurm's queue, left to it\n";
@@ -124,10 +112,10 @@ int runLocal(const SweepRequest& r) {
   int stopSignal = 0;
   const bool tty = isatty(STDERR_FILENO);
   auto progress = [&] {
-    const std::size_t left = todo.size() - ranHere - running.size();
+    const std::size_t left = toRun.size() - ranHere - running.size();
     const double eta = ranHere ? cellSeconds / double(ranHere) * double(left + running.size()) / double(jobs) : NAN;
     char line[200];
-    std::snprintf(line, sizeof line, "%zu/%zu cells run, %zu failed, %zu running, ETA %s", ranHere, todo.size(),
+    std::snprintf(line, sizeof line, "%zu/%zu cells run, %zu failed, %zu running, ETA %s", ranHere, toRun.size(),
                   failedHere, running.size(), std::isnan(eta) ? "–" : duration(eta).c_str());
     std::cerr << (tty ? "\r\033[K" : "") << "sweep " << r.sweep.name << ": " << line << (tty ? "" : "\n") << std::flush;
   };
@@ -136,9 +124,9 @@ int runLocal(const SweepRequest& r) {
     for (const auto& [pid, cell] : running) kill(-pid, signal);
   };
   try {
-    while ((next < todo.size() && !stopSignal) || !running.empty()) {
-      while (!stopSignal && next < todo.size() && running.size() < jobs) {
-        const sweep::Cell cell = sweep::cellAt(r.sweep, todo[next++]);
+    while ((next < toRun.size() && !stopSignal) || !running.empty()) {
+      while (!stopSignal && next < toRun.size() && running.size() < jobs) {
+        const sweep::Cell cell = sweep::cellAt(r.sweep, toRun[next++]);
         running.emplace(startCell(exe, cell, sweep::cellFolder(r.out, cell), true), Running{cell, Clock::now()});
       }
       bool reaped = false;
@@ -180,7 +168,7 @@ int runLocal(const SweepRequest& r) {
   if (stopSignal) {
     std::cout << "interrupted (" << (stopSignal == SIGINT ? "Ctrl-C" : stopSignal == SIGHUP ? "SIGHUP" : "SIGTERM")
               << "): " << ranHere << " cells finished here and kept, " << interrupted << " stopped, "
-              << (todo.size() - ranHere) << " left; run the same command again to finish them\n";
+              << (toRun.size() - ranHere) << " left; run the same command again to finish them\n";
     return 130;
   }
   return printSummary(std::cout, r);
@@ -225,6 +213,18 @@ int runCell(const SweepRequest& r) {
 }
 
 }  // namespace
+
+CellSelection selectCells(const SweepRequest& r, const std::set<std::uint64_t>& queued) {
+  CellSelection c;
+  for (std::uint64_t i = 0; i < r.sweep.cellCount(); ++i) {
+    if (queued.count(i)) continue;
+    const sweep::CellState s = sweep::stateOf(r.out, sweep::cellAt(r.sweep, i));
+    if (s == sweep::CellState::Done) ++c.done;
+    else if (s == sweep::CellState::Failed && !r.retryFailed) ++c.failed;
+    else c.toRun.push_back(i);
+  }
+  return c;
+}
 
 int runSweepRequest(const SweepRequest& r) {
   try {

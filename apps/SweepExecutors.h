@@ -6,7 +6,9 @@
 // same wherever it ran.
 #include <cstdint>
 #include <filesystem>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "sweep/SweepFile.h"
 
@@ -23,6 +25,14 @@ struct SweepRequest {
   std::filesystem::path submitted;  // cell: the submission's list of cells and commands (SweepSlurm.h)
   std::string csv;         // collect
 };
+
+// Which cells an executor runs now: every cell not done and not still in
+// Slurm's queue (`queued`), failed ones only when retrying; the rest counted.
+struct CellSelection {
+  std::vector<std::uint64_t> toRun;
+  std::uint64_t done = 0, failed = 0;
+};
+CellSelection selectCells(const SweepRequest& request, const std::set<std::uint64_t>& queued);
 
 // The command's exit code: 0 all done, 1 a cell failed or is left, 2 bad
 // input, 130 interrupted (Ctrl-C; finished cells stay).

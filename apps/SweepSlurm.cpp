@@ -87,21 +87,15 @@ std::string submittedCommand(const fs::path& cells, std::uint64_t index) {
 int runSlurm(const SweepRequest& r) {
   std::optional<FolderLock> lock(std::in_place, r.out);  // while choosing and submitting cells
   const std::set<std::uint64_t> queued = queuedCells(r);
-  std::vector<std::uint64_t> todo;
-  std::uint64_t done = 0, failed = 0;
-  for (std::uint64_t i = 0; i < r.sweep.cellCount(); ++i) {
-    if (queued.count(i)) continue;
-    const sweep::CellState s = sweep::stateOf(r.out, sweep::cellAt(r.sweep, i));
-    if (s == sweep::CellState::Done) ++done;
-    else if (s == sweep::CellState::Failed && !r.retryFailed) ++failed;
-    else todo.push_back(i);
-  }
+  const CellSelection selected = selectCells(r, queued);
+  const std::vector<std::uint64_t>& toRun = selected.toRun;
+  const std::uint64_t done = selected.done, failed = selected.failed;
   std::cout << "sweep " << r.sweep.name << ": " << r.sweep.cellCount() << " cells, " << done << " done, " << queued.size()
-            << " in Slurm's queue, " << todo.size() << " to submit\n";
+            << " in Slurm's queue, " << toRun.size() << " to submit\n";
   if (failed) std::cout << "  " << failed << " failed before and left so (--retry-failed submits them again)\n";
-  if (!todo.empty()) {
-    if (const std::uint64_t limit = maxArraySize(); todo.back() >= limit)
-      throw std::runtime_error("cell " + std::to_string(todo.back()) + " is past the cluster's MaxArraySize " +
+  if (!toRun.empty()) {
+    if (const std::uint64_t limit = maxArraySize(); toRun.back() >= limit)
+      throw std::runtime_error("cell " + std::to_string(toRun.back()) + " is past the cluster's MaxArraySize " +
                                std::to_string(limit) + " (array indices are cell numbers): raise MaxArraySize in "
                                "slurm.conf or split the sweep");
     const fs::path slurm = r.out / "slurm";
@@ -112,7 +106,7 @@ int runSlurm(const SweepRequest& r) {
     const fs::path cells = slurm / ("submit-" + n + ".cells"), script = slurm / ("submit-" + n + ".sh");
     {
       std::ofstream list(cells, std::ios::binary);
-      for (std::uint64_t i : todo) list << i << "\t" << sweep::shellQuoted(sweep::cellAt(r.sweep, i).args) << "\n";
+      for (std::uint64_t i : toRun) list << i << "\t" << sweep::shellQuoted(sweep::cellAt(r.sweep, i).args) << "\n";
       list.close();
       if (!list) throw std::runtime_error(cells.string() + ": cannot write the submitted cells");
     }
@@ -130,7 +124,7 @@ int runSlurm(const SweepRequest& r) {
     }
     ::chmod(script.c_str(), 0755);
     std::vector<std::string> sbatch{"sbatch", "--parsable", "--job-name=" + jobName(r),
-                                    "--array=" + arrayList(todo) +
+                                    "--array=" + arrayList(toRun) +
                                         (r.sweep.slurm.maxParallel ? "%" + std::to_string(r.sweep.slurm.maxParallel) : ""),
                                     "--output=" + (slurm / "task-%A_%a.out").string(), "--cpus-per-task=1"};
     if (!r.sweep.slurm.partition.empty()) sbatch.push_back("--partition=" + r.sweep.slurm.partition);
@@ -140,7 +134,7 @@ int runSlurm(const SweepRequest& r) {
     if (c.exitCode != 0) throw std::runtime_error(slurmFailure("sbatch", c));
     std::string id = c.out.substr(0, c.out.find_first_of(";\n"));
     std::ofstream(slurm / "jobs.txt", std::ios::app) << id << "\n";
-    std::cout << "submitted job " << id << ": cells " << arrayList(todo)
+    std::cout << "submitted job " << id << ": cells " << arrayList(toRun)
               << (r.sweep.slurm.maxParallel ? ", at most " + std::to_string(r.sweep.slurm.maxParallel) + " at once" : "")
               << " (" << script.string() << ")\n";
   }
