@@ -108,6 +108,71 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
     e.tileLabel = tissues_ && !e.labelLeaf ? labels_->getValue(at) : 0;
     return e;
   };
+  // The settled stamp's core: the voxels it covered wholly (coverage 1) it
+  // left at air, or uncut as hardness 0, and this stamp leaves them so too,
+  // so only the crescent the burr swept since and the ramp of its surface
+  // are visited (at 25 µm voxels the core was 6 of every 7 voxels read).
+  // The core radius is cut by the same thousandth of a voxel as the reach
+  // is padded, so rounding never puts a voxel in it that is not.
+  const double core = radius - 0.5 * ramp - 1e-3 * std::max({h.x, h.y, h.z});
+  const double core2 = settled && core > 0.0 ? core * core : -1.0;
+  // Leaf by leaf along voxels [runLo, runHi] of row (j, k), in the same voxel
+  // order as one by one (so the removed volume sums identically): a leaf's
+  // buffer is read and written directly, which is what setValueOnly does,
+  // without a lookup per voxel (through the accessors those were half the
+  // stamp's time).
+  auto cutRun = [&](int runLo, int runHi, int j, int k) {
+    for (int seg = runLo; seg <= runHi; seg = (seg & ~7) + 8) {
+      const int segHi = std::min(runHi, (seg & ~7) + 7);
+      const StampLeaf block = leafAt(seg, j, k);
+      if (block.air) continue;
+      Leaf* leaf = block.leaf;
+      float* data = leaf ? leaf->buffer().data() : nullptr;
+      const int rowOffset = ((j & 7) << 3) + (k & 7);
+      const TissueMap::LabelGrid::TreeType::LeafNodeType* labelLeaf = block.labelLeaf;
+      const int tileLabel = block.tileLabel;
+      // The segment's changed voxels, marked dirty together after it.
+      int changedLo = std::numeric_limits<int>::max(), changedHi = std::numeric_limits<int>::min();
+      // Cuts voxel i of the row (density `old`, not air): true with the new
+      // density in `now` if the burr lowers it and its tissue may be cut.
+      auto cut = [&](int i, float old, float& now) {
+        const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
+        const double coverage = coverageAt(d);
+        if (coverage <= 0.0) return false;
+        // The density that leaves the voxel a (1 − coverage) material fraction:
+        // on the sphere's surface (coverage ½) that is exactly the iso-value.
+        now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
+        if (now >= old) return false;
+        // A tissue of hardness 0 (an implant, a guard a lesson sets) is never cut.
+        if (tissues_ &&
+            !(tissues_->hardness()[std::size_t(labelLeaf ? labelLeaf->getValue(((i & 7) << 6) + rowOffset) : tileLabel)] > 0.f))
+          return false;
+        result.removedVolume += (phi(old) - phi(now)) * voxelVolume;
+        ++result.voxelsChanged;
+        changedLo = std::min(changedLo, i), changedHi = i;
+        return true;
+      };
+      // Air first: a read is cheaper than the distance. In a leaf the run is
+      // scanned by a load and a compare a voxel (4 % of #3's frames went to
+      // the air test when it chose between the leaf and the accessor at
+      // every voxel).
+      if (data) {
+        for (int i = seg; i <= segHi; ++i) {
+          float& value = data[((i & 7) << 6) + rowOffset];
+          float now;
+          if (!(value <= air) && cut(i, value, now)) value = now;
+        }
+      } else {
+        for (int i = seg; i <= segHi; ++i) {
+          const openvdb::Coord xyz(i, j, k);
+          const float old = acc_.getValue(xyz);
+          float now;
+          if (!(old <= air) && cut(i, old, now)) acc_.setValueOnly(xyz, now);
+        }
+      }
+      if (changedLo <= changedHi) dirty.markRun(changedLo, changedHi, j, k);
+    }
+  };
   for (int k = lo.z; k <= hi.z; ++k)
     for (int j = lo.y; j <= hi.y; ++j) {
       // Only the run of the row the (padded) reach crosses: a stamp visits
@@ -137,62 +202,22 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
           if (A > 0.0) rowHi = std::min(rowHi, floorToInt(edge));
           else rowLo = std::max(rowLo, -floorToInt(-edge));
         }
-      }
-      // Leaf by leaf along the run, in the same voxel order as one by one
-      // (so the removed volume sums identically): a leaf's buffer is read and
-      // written directly, which is what setValueOnly does, without a lookup
-      // per voxel (through the accessor those were half the stamp's time).
-      for (int seg = rowLo; seg <= rowHi; seg = (seg & ~7) + 8) {
-        const int segHi = std::min(rowHi, (seg & ~7) + 7);
-        const StampLeaf block = leafAt(seg, j, k);
-        if (block.air) continue;
-        Leaf* leaf = block.leaf;
-        float* data = leaf ? leaf->buffer().data() : nullptr;
-        const int rowOffset = ((j & 7) << 3) + (k & 7);
-        const TissueMap::LabelGrid::TreeType::LeafNodeType* labelLeaf = block.labelLeaf;
-        const int tileLabel = block.tileLabel;
-        // The segment's changed voxels, marked dirty together after it.
-        int changedLo = std::numeric_limits<int>::max(), changedHi = std::numeric_limits<int>::min();
-        // Cuts voxel i of the row (density `old`, not air): true with the new
-        // density in `now` if the burr lowers it and its tissue may be cut.
-        auto cut = [&](int i, float old, float& now) {
-          const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
-          const double coverage = coverageAt(d);
-          if (coverage <= 0.0) return false;
-          // The density that leaves the voxel a (1 − coverage) material fraction:
-          // on the sphere's surface (coverage ½) that is exactly the iso-value.
-          now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
-          if (now >= old) return false;
-          // A tissue of hardness 0 (an implant, a guard a lesson sets) is never cut.
-          if (tissues_ &&
-              !(tissues_->hardness()[std::size_t(labelLeaf ? labelLeaf->getValue(((i & 7) << 6) + rowOffset) : tileLabel)] > 0.f))
-            return false;
-          result.removedVolume += (phi(old) - phi(now)) * voxelVolume;
-          ++result.voxelsChanged;
-          changedLo = std::min(changedLo, i), changedHi = i;
-          return true;
-        };
-        // Air first: once the burr has sunk in, most of its sphere is air
-        // already, and a read is cheaper than the distance. In a leaf the
-        // run is scanned by a load and a compare a voxel (4 % of #3's
-        // frames went to the air test when it chose between the leaf and
-        // the accessor at every voxel).
-        if (data) {
-          for (int i = seg; i <= segHi; ++i) {
-            float& value = data[((i & 7) << 6) + rowOffset];
-            float now;
-            if (!(value <= air) && cut(i, value, now)) value = now;
-          }
-        } else {
-          for (int i = seg; i <= segHi; ++i) {
-            const openvdb::Coord xyz(i, j, k);
-            const float old = acc_.getValue(xyz);
-            float now;
-            if (!(old <= air) && cut(i, old, now)) acc_.setValueOnly(xyz, now);
+        // And the voxels inside o's core: those strictly within the row's chord of it.
+        const double oy = (j - o.y) * h.y, oz = (k - o.z) * h.z;
+        const double coreChord2 = core2 - oy * oy - oz * oz;
+        if (coreChord2 > 0.0) {
+          const double coreHalf = std::sqrt(coreChord2) / h.x;
+          const double a = std::clamp(o.x - coreHalf, double(lo.x) - 2.0, double(hi.x) + 2.0);
+          const double b = std::clamp(o.x + coreHalf, double(lo.x) - 2.0, double(hi.x) + 2.0);
+          const int coreLo = floorToInt(a) + 1, coreHi = -floorToInt(-b) - 1;  // strictly inside (a, b)
+          if (coreLo <= coreHi) {
+            if (rowLo < coreLo) cutRun(rowLo, std::min(rowHi, coreLo - 1), j, k);
+            if (rowHi > coreHi) cutRun(std::max(rowLo, coreHi + 1), rowHi, j, k);
+            continue;
           }
         }
-        if (changedLo <= changedHi) dirty.markRun(changedLo, changedHi, j, k);
       }
+      cutRun(rowLo, rowHi, j, k);
     }
   totalRemoved_.add(result.removedVolume);
   return result;
