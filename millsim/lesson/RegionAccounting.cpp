@@ -9,6 +9,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <openvdb/tools/FastSweeping.h>
 #include <glm/common.hpp>
 #include <glm/matrix.hpp>
@@ -288,27 +290,62 @@ RegionAccounting::RegionAccounting(const Scene& scene, bool counting) {
   }
   tissueSlots_ = summary_.byTissue.size();
 
-  for (std::size_t vi = 0; vi < volumes_.size(); ++vi) {
-    const Volume& v = *volumes_[vi];
-    for (auto it = v.origin->grid().cbeginValueOn(); it; ++it) {
-      const double phi0 = v.phi(*it);
-      if (phi0 <= 0.0) continue;
-      const openvdb::Coord c = it.getCoord();
-      const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
-      const int label = v.label(c.x(), c.y(), c.z());
-      bool forbidden = false, target = false;
-      for (std::size_t r = 0; r < regions_.size(); ++r) {
-        const bool in = regions_[r]->contains(vi, w, label);
-        forbidden |= in && results_[r].forbidden;
-        target |= in && !results_[r].forbidden;
-      }
-      for (std::size_t r = 0; r < regions_.size(); ++r)
-        if (regions_[r]->contains(vi, w, label)) {
-          results_[r].initial += phi0 * v.voxelVolume;
-          if (forbidden && !results_[r].forbidden) results_[r].initialForbidden += phi0 * v.voxelVolume;
-        }
-      if (target) summary_.targetsInitial += phi0 * v.voxelVolume;
+  for (std::size_t vi = 0; vi < volumes_.size(); ++vi) measureAtStart(vi);
+}
+
+// The material each region holds at the start: a pass over every material
+// voxel, leaf by leaf on TBB's threads (50 M voxels at 25 µm: 1.9 s on one
+// core through a root-down label lookup a voxel), each leaf's sums kept
+// apart and added in leaf order, so the totals do not depend on the split.
+void RegionAccounting::measureAtStart(std::size_t vi) {
+  const Volume& v = *volumes_[vi];
+  using Labels = TissueMap::LabelGrid::ConstAccessor;
+  struct Sums {
+    std::vector<double> initial, initialForbidden;
+    double targets = 0.0;
+  };
+  auto measure = [&](const openvdb::Coord& c, float value, Labels* labels, Sums& sums) {
+    const double phi0 = v.phi(value);
+    if (phi0 <= 0.0) return;
+    const glm::dvec3 w = v.world(c.x(), c.y(), c.z());
+    const int label = labels ? labels->getValue(c) : 0;
+    bool forbidden = false, target = false;
+    for (std::size_t r = 0; r < regions_.size(); ++r) {
+      const bool in = regions_[r]->contains(vi, w, label);
+      forbidden |= in && results_[r].forbidden;
+      target |= in && !results_[r].forbidden;
     }
+    if (!forbidden && !target) return;
+    for (std::size_t r = 0; r < regions_.size(); ++r)
+      if (regions_[r]->contains(vi, w, label)) {
+        sums.initial[r] += phi0 * v.voxelVolume;
+        if (forbidden && !results_[r].forbidden) sums.initialForbidden[r] += phi0 * v.voxelVolume;
+      }
+    if (target) sums.targets += phi0 * v.voxelVolume;
+  };
+  const Sums empty{std::vector<double>(regions_.size(), 0.0), std::vector<double>(regions_.size(), 0.0), 0.0};
+  using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
+  std::vector<const Leaf*> leaves;
+  leaves.reserve(v.origin->grid().tree().leafCount());
+  v.origin->grid().tree().getNodes(leaves);
+  std::vector<Sums> perLeaf(leaves.size() + 1, empty);  // the last: the active tiles
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::unique_ptr<Labels> labels = v.tissues ? std::make_unique<Labels>(v.tissues->labels().getConstAccessor()) : nullptr;
+    for (std::size_t i = range.begin(); i != range.end(); ++i)
+      for (auto it = leaves[i]->cbeginValueOn(); it; ++it) measure(it.getCoord(), *it, labels.get(), perLeaf[i]);
+  });
+  // Active tiles (a VDB file may hold them; the readers and the phantom make leaves), voxel by voxel.
+  std::unique_ptr<Labels> labels = v.tissues ? std::make_unique<Labels>(v.tissues->labels().getConstAccessor()) : nullptr;
+  auto tiles = v.origin->grid().tree().cbeginValueOn();
+  tiles.setMaxDepth(VoxelVolume::Grid::TreeType::ValueOnCIter::LEAF_DEPTH - 1);
+  for (; tiles; ++tiles) {
+    const openvdb::CoordBBox box = tiles.getBoundingBox();
+    for (auto c = box.begin(); c; ++c) measure(*c, *tiles, labels.get(), perLeaf.back());
+  }
+  for (const Sums& sums : perLeaf) {
+    for (std::size_t r = 0; r < regions_.size(); ++r)
+      results_[r].initial += sums.initial[r], results_[r].initialForbidden += sums.initialForbidden[r];
+    summary_.targetsInitial += sums.targets;
   }
 }
 

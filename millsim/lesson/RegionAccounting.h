@@ -110,6 +110,7 @@ private:
   void stampViolation(std::size_t region, double t);
   void stampCompletion(double t);
   void findSoftTissues();
+  void measureAtStart(std::size_t volume);
 
   std::vector<std::unique_ptr<Region>> regions_;
   std::vector<std::unique_ptr<Volume>> volumes_;
