@@ -1,10 +1,10 @@
 // What `millsim check` says about each VolumeObject: size, spacing, memory,
 // its densities and tissues, and point-shell counts (the shells are built for
 // the report only, the three scales at once on TBB's threads: at 25 µm one
-// after another they were 5 of the 13 s of `check`). Memory is resident memory: the grid's allocated nodes and
-// buffers, and each shell's buffers, headroom for milling included, which it
-// writes when it builds them (PointShell::memoryBytes); not capacity reserved
-// and never touched.
+// after another they were 5 of the 13 s of `check`). Memory is resident
+// memory: the grid's allocated nodes and buffers, and each shell's buffers,
+// headroom for milling included, which it writes when it builds them
+// (PointShell::memoryBytes); not capacity reserved and never touched.
 #include <algorithm>
 #include <array>
 #include <iomanip>

@@ -188,8 +188,7 @@ double RegionAccounting::Volume::depthBelowSurface(const openvdb::Coord& c) {
 double RegionAccounting::SoftTissue::wallAt(const openvdb::Coord& c, const glm::dvec3& world) {
   // Most of a lesson's cutting is far from the pulp: one box test.
   if (glm::length(glm::max(glm::dvec3(0.0), glm::max(surfaceLo - world, world - surfaceHi))) > kWallReach + edge)
-    return -1.0;
-  if (surface.points.empty()) return -1.0;
+    return -1.0;  // also a tissue without surface points: its box is empty
   const auto [known, added] = walls.try_emplace(voxelKey(c), -1.f);
   if (!added) return known->second;
   std::uint32_t index = 0;

@@ -111,7 +111,7 @@ StampResult Miller::stampWith(const glm::dvec3& centreLocal, double radius, Cove
   // The settled stamp's core: the voxels it covered wholly (coverage 1) it
   // left at air, or uncut as hardness 0, and this stamp leaves them so too,
   // so only the crescent the burr swept since and the ramp of its surface
-  // are visited (at 25 µm voxels the core was 6 of every 7 voxels read).
+  // are visited (at 25 µm voxels the core was most of what a stamp read).
   // The core radius is cut by the same thousandth of a voxel as the reach
   // is padded, so rounding never puts a voxel in it that is not.
   const double core = radius - 0.5 * ramp - 1e-3 * std::max({h.x, h.y, h.z});

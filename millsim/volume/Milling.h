@@ -76,8 +76,8 @@ private:
   float iso_;
   // The leaves a stamp's box spans, looked up once a stamp (stampWith): up to
   // 12 per axis (a reach of 40 voxels: a 2 mm burr at 25 µm voxels; the table
-  // is 60 KB); a larger stamp looks up per row. At 5 (a reach of 16) the
-  // lesson's burr at 25 µm looked up per row: 40 % of its stamp's time.
+  // is about 70 KB); a larger stamp looks up per row, as the lesson's burr at
+  // 25 µm did when the table was 5 leaves an axis.
   static constexpr int kStampLeaves = 12;
   struct StampLeaf {
     unsigned stamp = 0;  // valid in the stamp with this number
@@ -93,7 +93,8 @@ private:
   // covered is still at most what it left there. A round stamp of the same
   // radius covers a voxel nearer that centre than its own no more, and would
   // change nothing there: it skips them, about half its sphere when the burr
-  // creeps (the §8.2 procedure's milling), with the same result bit for bit.
+  // creeps (the §8.2 procedure's milling), and the last stamp's core, which
+  // it left air, with the same result bit for bit.
   struct LastRound {
     bool valid = false;
     glm::dvec3 centre{0.0};
