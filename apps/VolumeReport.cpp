@@ -1,20 +1,15 @@
 // What `millsim check` says about each VolumeObject: size, spacing, memory,
 // its densities and tissues, and point-shell counts (the shells are built for
-// the report only, the three scales at once on TBB's threads: at 25 µm one
-// after another they were 5 of the 13 s of `check`). Memory is resident
+// the report only; each build uses every core itself). Memory is resident
 // memory: the grid's allocated nodes and buffers, and each shell's buffers,
 // headroom for milling included, which it writes when it builds them
 // (PointShell::memoryBytes); not capacity reserved and never touched.
 #include <algorithm>
-#include <array>
+#include <chrono>
 #include <iomanip>
-#include <memory>
 #include <sstream>
 
-#include <tbb/parallel_for.h>
-
 #include "VolumeReport.h"
-#include "millsim/run/ThreadCpuTime.h"
 #include "millsim/volume/PointShell.h"
 #include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VolumeObject.h"
@@ -51,23 +46,14 @@ std::string describeVolumes(const Scene& scene) {
     }
     out << std::fixed;
     out << "  point shell (isoValue " << std::setprecision(0) << vo->isoValue.get() << "):";
-    struct Built {
-      std::unique_ptr<PointShell> shell;
-      double cpuMs = 0.0;  // its own build's CPU time: the builds share the cores
-    };
-    std::array<Built, 3> shells;
-    tbb::parallel_for(0, 3, [&](int i) {
-      const double t0 = threadCpuMicros();
-      shells[std::size_t(i)].shell = std::make_unique<PointShell>(*v, vo->isoValue.get(), i + 1);
-      shells[std::size_t(i)].cpuMs = (threadCpuMicros() - t0) * 1e-3;
-    });
     for (int scale : {1, 2, 3}) {
-      const Built& b = shells[std::size_t(scale - 1)];
-      const double bytes = double(b.shell->memoryBytes());
-      out << " scale " << scale << ": " << b.shell->size() << " points (" << std::setprecision(0) << b.cpuMs
-          << " ms CPU, " << std::setprecision(1) << bytes / (1024.0 * 1024.0) << " MiB resident, "
-          << std::setprecision(0) << bytes / double(std::max<std::size_t>(1, b.shell->size())) << " B/point)"
-          << (scale < 3 ? ";" : "\n");
+      const auto t0 = std::chrono::steady_clock::now();
+      const PointShell shell(*v, vo->isoValue.get(), scale);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double bytes = double(shell.memoryBytes());
+      out << " scale " << scale << ": " << shell.size() << " points (" << std::setprecision(0) << ms << " ms, "
+          << std::setprecision(1) << bytes / (1024.0 * 1024.0) << " MiB resident, " << std::setprecision(0)
+          << bytes / double(std::max<std::size_t>(1, shell.size())) << " B/point)" << (scale < 3 ? ";" : "\n");
     }
   }
   return out.str();

@@ -6,6 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <glm/geometric.hpp>
 
@@ -60,6 +65,56 @@ void densestOfEach(const DenseFine& fine, float* out, glm::ivec3 lo, glm::ivec3 
         }
         *out++ = v;
       }
+}
+
+// Dense copies of a region: F, the fine voxels it reads, and the coarse values
+// of E (F itself at scale 1).
+struct DenseRegion {
+  DenseFine fine, coarse;
+};
+
+// Copies F into `fineOut` leaf by leaf (one tree lookup per 8³ block instead
+// of one per voxel) and, at scale > 1, E's coarse values into `coarseOut`.
+DenseRegion copyDense(const VoxelVolume& volume, int scale, glm::ivec3 coarseDims, glm::ivec3 eLo, glm::ivec3 eDim,
+                      float* fineOut, float* coarseOut) {
+  // F reaches one voxel further each way: the iso-surface search of a point
+  // walks up to s voxels (per axis) from its block and reads one beyond (trilinear).
+  const glm::ivec3 fLo = eLo * scale - 1, fDim = eDim * scale + 2;
+  const auto& tree = volume.grid().tree();
+  using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
+  const glm::ivec3 fHi = fLo + fDim - 1;
+  const DenseFine fine{fineOut, fLo, fDim};
+  for (int oz = fLo.z & ~7; oz <= fHi.z; oz += 8)
+    for (int oy = fLo.y & ~7; oy <= fHi.y; oy += 8)
+      for (int ox = fLo.x & ~7; ox <= fHi.x; ox += 8) {
+        const openvdb::Coord origin(ox, oy, oz);
+        const Leaf* leaf = tree.probeConstLeaf(origin);
+        const glm::ivec3 lo = glm::max(glm::ivec3(ox, oy, oz), fLo), hi = glm::min(glm::ivec3(ox, oy, oz) + 7, fHi);
+        if (!leaf) {  // a tile: one value for the whole block
+          const float tile = tree.getValue(origin);
+          for (int i = lo.x; i <= hi.x; ++i)
+            for (int j = lo.y; j <= hi.y; ++j) {
+              float* run = fineOut + fine.index(i, j, lo.z);
+              std::fill(run, run + (hi.z - lo.z) + 1, tile);
+            }
+          continue;
+        }
+        // The leaf's values straight from its buffer, a run of z at a time
+        // (the same order as the copy's): no per-voxel lookup, and no
+        // strided read (across x that was a quarter of updateRegion's own
+        // instructions).
+        const float* data = leaf->buffer().data();
+        for (int i = lo.x; i <= hi.x; ++i)
+          for (int j = lo.y; j <= hi.y; ++j)
+            std::copy_n(data + ((i & 7) << 6) + ((j & 7) << 3) + (lo.z & 7), hi.z - lo.z + 1, fineOut + fine.index(i, j, lo.z));
+      }
+  // Coarse values of E, exactly as PointShell::coarse() computes them (the
+  // densest fine voxel). At scale 1 they are the fine voxels: F itself.
+  if (scale == 1) return {fine, fine};
+  if (scale == 2) densestOfEach<2>(fine, coarseOut, eLo, eDim, coarseDims, volume.airValue());
+  else if (scale == 3) densestOfEach<3>(fine, coarseOut, eLo, eDim, coarseDims, volume.airValue());
+  else densestOfEach<0>(fine, coarseOut, eLo, eDim, coarseDims, volume.airValue(), scale);
+  return {fine, DenseFine{coarseOut, eLo, eDim}};
 }
 
 // The fine voxels read through the grid's accessor (a bucket built or rebuilt whole).
@@ -149,7 +204,6 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale, std
 
   // Only a bucket that holds material now can ever hold points (milling only
   // removes material): mark those.
-  auto acc = volume.grid().getConstAccessor();
   for (auto leaf = volume.grid().tree().cbeginLeaf(); leaf; ++leaf) {
     if (leaf->onVoxelCount() == 0) continue;
     const openvdb::Coord o = leaf->origin();
@@ -175,28 +229,54 @@ PointShell::PointShell(const VoxelVolume& volume, float isoValue, int scale, std
   std::size_t materialBuckets = 0;
   for (const Bucket& b : buckets_) materialBuckets += b.material;
   order_.resize(materialBuckets);
-  // The points, bucket after bucket, tight (growing as they come: this is the
-  // scene thread), then moved into an array of exactly their number plus the
-  // headroom, written through.
-  for (int b = 0; b < int(buckets_.size()); ++b) {
-    const std::size_t n = computeBucket(acc, b);
-    Bucket& bucket = buckets_[std::size_t(b)];
-    bucket.size = std::uint16_t(n);
-    count_ += n;
-    for (std::size_t i = 0; i < n; ++i) bucket.box.add(merged_[i].position);
-    bucket.begin = std::uint32_t(points_.size());
-    points_.insert(points_.end(), merged_.begin(), merged_.begin() + bucket.size);
-    cells_.insert(cells_.end(), mergedCells_.begin(), mergedCells_.begin() + bucket.size);
-    bucket.capacity = bucket.size;
-  }
-  tail_ = points_.size();
+  // The points of every bucket on TBB's threads, each from a dense copy of its
+  // region (voxel by voxel through an accessor, the three shells were 4.4 of
+  // the 11 s of a 25 µm `check`), then laid out tight in bucket order: the
+  // same array whatever the split.
+  struct Built {
+    std::vector<ShellPoint> points;
+    std::vector<std::uint16_t> cells;
+  };
+  std::vector<Built> built(buckets_.size());
+  const int eEdge = kBucket + 2, fEdge = eEdge * scale + 2;
+  using Scratch = std::pair<std::vector<float>, std::vector<float>>;
+  tbb::enumerable_thread_specific<Scratch> scratch([&] {
+    return Scratch(std::size_t(fEdge) * fEdge * fEdge, scale == 1 ? 0 : std::size_t(eEdge) * eEdge * eEdge);
+  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, int(buckets_.size())), [&](const tbb::blocked_range<int>& range) {
+    Scratch& buffers = scratch.local();
+    for (int b = range.begin(); b != range.end(); ++b) {
+      if (!buckets_[std::size_t(b)].material) continue;  // never held material: no points, ever
+      const glm::ivec3 cLo = glm::ivec3(b % bucketDims_.x, (b / bucketDims_.x) % bucketDims_.y,
+                                        b / (bucketDims_.x * bucketDims_.y)) * kBucket;
+      const glm::ivec3 cHi = glm::min(cLo + kBucket, coarseDims_) - 1;
+      const DenseRegion dense =
+          copyDense(volume, scale, coarseDims_, cLo - 1, cHi - cLo + 3, buffers.first.data(), buffers.second.data());
+      Built& out = built[std::size_t(b)];
+      scanDense(dense, cLo, cHi, [&](int I, int J, int K, const ShellPoint* p, int m) {
+        for (int q = 0; q < m && out.points.size() < kMaxBucketPoints; ++q) {  // computeBucket's cap
+          out.points.push_back(p[q]);
+          out.cells.push_back(std::uint16_t(((K - cLo.z) * kBucket + (J - cLo.y)) * kBucket + (I - cLo.x)));
+        }
+      });
+    }
+  });
+  // One array of exactly the points plus the headroom, written through
+  // (nothing reserved unwritten), each bucket's points freed once copied.
+  for (const Built& in : built) count_ += in.points.size();
   const std::size_t slots = count_ + std::max(count_ * headroomPerPoint, minHeadroom);
-  std::vector<ShellPoint> allPoints;
-  std::vector<std::uint16_t> allCells;
-  allPoints.reserve(slots), allCells.reserve(slots);  // exactly: nothing reserved unwritten
-  allPoints.assign(points_.begin(), points_.end()), allCells.assign(cells_.begin(), cells_.end());
-  allPoints.resize(slots), allCells.resize(slots);
-  points_.swap(allPoints), cells_.swap(allCells);
+  points_.assign(slots, ShellPoint{}), cells_.assign(slots, 0);
+  for (std::size_t b = 0; b < buckets_.size(); ++b) {
+    Bucket& bucket = buckets_[b];
+    Built& in = built[b];
+    bucket.size = bucket.capacity = std::uint16_t(in.points.size());
+    bucket.begin = std::uint32_t(tail_);
+    for (const ShellPoint& p : in.points) bucket.box.add(p.position);
+    std::copy(in.points.begin(), in.points.end(), points_.begin() + std::ptrdiff_t(tail_));
+    std::copy(in.cells.begin(), in.cells.end(), cells_.begin() + std::ptrdiff_t(tail_));
+    tail_ += in.points.size();
+    in = Built{};
+  }
   for (int s = 0; s < int(supers_.size()); ++s) refreshSuper(s);
 }
 
@@ -401,6 +481,29 @@ int PointShell::update(const VoxelVolume& volume, const DirtyBlocks& dirty) {
   return rebuilt + update(volume, dirty.origins());
 }
 
+// Every coarse voxel of [rLo, rHi] that has shell points, in scan order (K,
+// J, I, as a bucket lists them), from a dense copy of its region.
+template <class Dense, class Emit>
+void PointShell::scanDense(const Dense& dense, glm::ivec3 rLo, glm::ivec3 rHi, Emit&& emit) const {
+  const std::ptrdiff_t sx = std::ptrdiff_t(dense.coarse.strideX()), sy = std::ptrdiff_t(dense.coarse.strideY());
+  for (int K = rLo.z; K <= rHi.z; ++K)
+    for (int J = rLo.y; J <= rHi.y; ++J) {
+      // A row at a time, the neighbours at fixed strides: most of the
+      // box is air or deep material, and a 3-D index for each of the
+      // seven reads was most of the loop's cost.
+      const float* row = dense.coarse.data + dense.coarse.index(rLo.x, J, K);
+      for (int I = rLo.x; I <= rHi.x; ++I) {
+        const float* c = row + (I - rLo.x) * sx;
+        const float v = *c;
+        if (v <= iso_) continue;
+        const float n[6] = {c[-sx], c[sx], c[-sy], c[sy], c[-1], c[1]};
+        ShellPoint p[2];
+        const int m = makePoints(dense.fine, v, n, I, J, K, p);
+        if (m != 0) emit(I, J, K, p, m);
+      }
+    }
+}
+
 bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::ivec3 vhi, int& rebuilt) {
   if (glm::any(glm::greaterThan(vlo, vhi))) return true;  // nothing marked
   // C: coarse voxels whose value, surface status or normal can have changed
@@ -410,54 +513,10 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
   const glm::ivec3 cHi = glm::min(vhi / scale_ + 1, coarseDims_ - 1);
   if (glm::any(glm::greaterThan(cLo, cHi))) return true;
   const glm::ivec3 eLo = cLo - 1, eDim = cHi - cLo + 3;
-  // F reaches one voxel further each way: the iso-surface search of a point
-  // walks up to s voxels (per axis) from its block and reads one beyond (trilinear).
-  const glm::ivec3 fLo = eLo * scale_ - 1, fDim = eDim * scale_ + 2;
+  const glm::ivec3 fDim = eDim * scale_ + 2;  // as copyDense reads F
   const std::size_t fineCount = std::size_t(fDim.x) * fDim.y * fDim.z;
   if (fineCount > fineScratch_.size() || std::size_t(eDim.x) * eDim.y * eDim.z > coarseScratch_.size()) return false;
-
-  // Dense copy of F, leaf by leaf: one tree lookup per 8³ block instead of one per voxel.
-  const auto& tree = volume.grid().tree();
-  using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
-  const glm::ivec3 fHi = fLo + fDim - 1;
-  const DenseFine fine{fineScratch_.data(), fLo, fDim};
-  for (int oz = fLo.z & ~7; oz <= fHi.z; oz += 8)
-    for (int oy = fLo.y & ~7; oy <= fHi.y; oy += 8)
-      for (int ox = fLo.x & ~7; ox <= fHi.x; ox += 8) {
-        const openvdb::Coord origin(ox, oy, oz);
-        const Leaf* leaf = tree.probeConstLeaf(origin);
-        const glm::ivec3 lo = glm::max(glm::ivec3(ox, oy, oz), fLo), hi = glm::min(glm::ivec3(ox, oy, oz) + 7, fHi);
-        if (!leaf) {  // a tile: one value for the whole block
-          const float tile = tree.getValue(origin);
-          for (int i = lo.x; i <= hi.x; ++i)
-            for (int j = lo.y; j <= hi.y; ++j) {
-              float* run = fineScratch_.data() + fine.index(i, j, lo.z);
-              std::fill(run, run + (hi.z - lo.z) + 1, tile);
-            }
-          continue;
-        }
-        // The leaf's values straight from its buffer, a run of z at a time
-        // (the same order as the copy's): no per-voxel lookup, and no
-        // strided read (across x that was a quarter of updateRegion's own
-        // instructions).
-        const float* data = leaf->buffer().data();
-        for (int i = lo.x; i <= hi.x; ++i)
-          for (int j = lo.y; j <= hi.y; ++j)
-            std::copy_n(data + ((i & 7) << 6) + ((j & 7) << 3) + (lo.z & 7), hi.z - lo.z + 1,
-                        fineScratch_.data() + fine.index(i, j, lo.z));
-      }
-  // Coarse values of E, exactly as coarse() computes them (the densest fine
-  // voxel). At scale 1 they are the fine voxels: read from F itself.
-  const DenseFine coarseCopy{coarseScratch_.data(), eLo, eDim};
-  if (scale_ == 2)
-    densestOfEach<2>(fine, coarseScratch_.data(), eLo, eDim, coarseDims_, volume_->airValue());
-  else if (scale_ == 3)
-    densestOfEach<3>(fine, coarseScratch_.data(), eLo, eDim, coarseDims_, volume_->airValue());
-  else if (scale_ > 1)
-    densestOfEach<0>(fine, coarseScratch_.data(), eLo, eDim, coarseDims_, volume_->airValue(), scale_);
-  // The coarse values, dense: F itself at scale 1, else E's copy.
-  const DenseFine coarse = scale_ == 1 ? fine : coarseCopy;
-  const std::ptrdiff_t sx = std::ptrdiff_t(coarse.strideX()), sy = std::ptrdiff_t(coarse.strideY());
+  const DenseRegion dense = copyDense(volume, scale_, coarseDims_, eLo, eDim, fineScratch_.data(), coarseScratch_.data());
 
   // Each bucket overlapping C: keep its points outside C, recompute those in C,
   // merged in scan order (K, J, I) as a full rebuild would list them.
@@ -489,27 +548,13 @@ bool PointShell::updateRegion(const VoxelVolume& volume, glm::ivec3 vlo, glm::iv
             mergedCells_[merged++] = std::uint16_t(c);
           }
         };
-        for (int K = rLo.z; K <= rHi.z; ++K)
-          for (int J = rLo.y; J <= rHi.y; ++J) {
-            // A row at a time, the neighbours at fixed strides: most of the
-            // box is air or deep material, and a 3-D index for each of the
-            // seven reads was most of the loop's cost.
-            const float* row = coarse.data + coarse.index(rLo.x, J, K);
-            for (int I = rLo.x; I <= rHi.x; ++I) {
-              const float* c = row + (I - rLo.x) * sx;
-              const float v = *c;
-              if (v <= iso_) continue;
-              const float n[6] = {c[-sx], c[sx], c[-sy], c[sy], c[-1], c[1]};
-              ShellPoint p[2];
-              const int m = makePoints(fine, v, n, I, J, K, p);
-              if (m == 0) continue;
-              flushOldBefore(cellOf(I, J, K));
-              for (int q = 0; q < m; ++q) {
-                merged_[merged] = p[q];
-                mergedCells_[merged++] = cellOf(I, J, K);
-              }
-            }
+        scanDense(dense, rLo, rHi, [&](int I, int J, int K, const ShellPoint* p, int m) {
+          flushOldBefore(cellOf(I, J, K));
+          for (int q = 0; q < m; ++q) {
+            merged_[merged] = p[q];
+            mergedCells_[merged++] = cellOf(I, J, K);
           }
+        });
         flushOldBefore(std::numeric_limits<int>::max());
         // The same cap as a rebuild (the tail of a bucket with more points than
         // voxels, which real data does not reach, is dropped by both).

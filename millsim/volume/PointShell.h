@@ -120,6 +120,10 @@ private:
   void compact();
   void refreshSuper(int s);
   bool updateRegion(const VoxelVolume& volume, glm::ivec3 voxelLo, glm::ivec3 voxelHi, int& rebuilt);
+  // Calls emit(I, J, K, points, n) for each coarse voxel of [lo, hi] that has
+  // shell points, in scan order, from dense copies of the region (Dense: the
+  // fine and coarse copies PointShell.cpp makes). Build and update share it.
+  template <class Dense, class Emit> void scanDense(const Dense& dense, glm::ivec3 lo, glm::ivec3 hi, Emit&& emit) const;
 
   const VoxelVolume* volume_;
   float iso_;
