@@ -82,10 +82,12 @@ double enamelThickness(double y) { return 1.4 * smoothstep(kCej - 0.5, kCej + 2.
 // Fraction of a voxel of size h (mm) inside a surface at signed distance d.
 double coverage(double d, double h) { return std::clamp(0.5 - d / h, 0.0, 1.0); }
 
-float densityAt(const glm::dvec3& pmm, bool socket, double hmm) {
+// The density at p (mm) for a voxel of size h (mm), given the tooth's and the
+// pulp's distances there (each computed once when labels are made too: their
+// pow() calls were a fifth of a 25 µm lesson's opening).
+float densityAt(const glm::dvec3& pmm, double tooth, double pulp, bool socket, double hmm) {
   using D = ToothDensities;
   double v = D::air;
-  const double tooth = toothDistance(pmm);
   if (socket) {
     // Alveolar bone up to 1.5 mm below the junction, with a 0.2 mm ligament
     // space around the roots.
@@ -97,21 +99,25 @@ float densityAt(const glm::dvec3& pmm, bool socket, double hmm) {
   auto material = [&](double dentinDepth) {
     double m = D::enamel;
     m += (D::dentin - m) * coverage(tooth + enamel - dentinDepth, hmm);
-    return m + (D::softTissue - m) * coverage(pulpDistance(pmm), hmm);
+    return m + (D::softTissue - m) * coverage(pulp, hmm);
   };
   const double c = coverage(tooth, hmm);
   return static_cast<float>(v + ((c < 1.0 ? material(hmm) : material(0.0)) - v) * c);
 }
 
+float densityAt(const glm::dvec3& pmm, bool socket, double hmm) {
+  return densityAt(pmm, toothDistance(pmm), pulpDistance(pmm), socket, hmm);
+}
+
 // The tissue a voxel of size h (mm) at p is mostly made of, by the same
 // layering as densityAt: every voxel densityAt gives material to (its centre
 // within half a voxel of a surface) gets a label, so the label volume covers
-// the density volume's material voxel for voxel.
-int labelAt(const glm::dvec3& pmm, bool socket, double hmm) {
+// the density volume's material voxel for voxel. `pulp()` gives the pulp's
+// distance (only needed inside the tooth).
+template <class Pulp> int labelAt(const glm::dvec3& pmm, double tooth, Pulp&& pulp, bool socket, double hmm) {
   const double reach = 0.5 * hmm;
-  const double tooth = toothDistance(pmm);
   if (tooth < reach) {
-    if (pulpDistance(pmm) < 0.0) return kToothPulp;
+    if (pulp() < 0.0) return kToothPulp;
     if (tooth + enamelThickness(pmm.y) < 0.0) {
       // Below the junction the root's outer layer is cementum.
       return pmm.y < kCej && tooth > -kCementumThickness ? kToothCementum : kToothDentin;
@@ -120,6 +126,10 @@ int labelAt(const glm::dvec3& pmm, bool socket, double hmm) {
   }
   if (socket && box(pmm, {0, -6.0, 0}, {9.5, 6.5, 7.0}) < reach) return tooth - 0.2 < 0.0 ? kToothLigament : kToothBone;
   return 0;
+}
+
+int labelAt(const glm::dvec3& pmm, bool socket, double hmm) {
+  return labelAt(pmm, toothDistance(pmm), [&] { return pulpDistance(pmm); }, socket, hmm);
 }
 
 // A voxel's position in the tooth frame (mm); the same arithmetic everywhere.
@@ -170,83 +180,95 @@ DeepInside deepInside(const ToothPhantomOptions& o, const glm::dvec3& c, double 
   return {true, dd > 0.0};
 }
 
-// Fills voxels lo..hi (inclusive): nothing where no voxel can hold material,
-// one value where the block is deep inside one tissue, else halves (down to
-// 2³ voxels, then voxel by voxel). Whether any value is above `outside`.
+// Fills voxels lo..hi (inclusive) of each channel (densities, labels, or both
+// from one evaluation of the distances): nothing where no voxel can hold
+// material, one value where the block is deep inside one tissue, else halves
+// (down to 2³ voxels, then voxel by voxel). `value(p, h)` gives a voxel's
+// channels, `at(c)` the channels' slots of voxel c.
 template <class F, class At>
-bool fillBlock(const ToothPhantomOptions& o, glm::ivec3 lo, glm::ivec3 hi, float outside, F& value, At&& at) {
+void fillBlock(const ToothPhantomOptions& o, glm::ivec3 lo, glm::ivec3 hi, F& value, At&& at) {
   const double hmm = o.voxelSize * 1000.0;
   const glm::dvec3 centre = 0.5 * (voxelPosition(o, lo) + voxelPosition(o, hi));
   const double halfDiagonal = 0.5 * hmm * glm::length(glm::dvec3(hi - lo));
-  if (blockIsAir(o, centre, halfDiagonal)) return false;
+  if (blockIsAir(o, centre, halfDiagonal)) return;
   if (deepInside(o, centre, halfDiagonal).inside) {
-    const float v = value(centre, hmm);
-    if (!(v > outside)) return false;
+    const auto v = value(centre, hmm);
     for (int k = lo.z; k <= hi.z; ++k)
       for (int j = lo.y; j <= hi.y; ++j)
-        for (int i = lo.x; i <= hi.x; ++i) at(openvdb::Coord(i, j, k)) = v;
-    return true;
+        for (int i = lo.x; i <= hi.x; ++i) at(openvdb::Coord(i, j, k), v);
+    return;
   }
   const glm::ivec3 size = hi - lo + 1;
   if (size.x > 2 || size.y > 2 || size.z > 2) {
     const glm::ivec3 mid = lo + (size + 1) / 2;  // the first voxel of the upper halves
-    bool any = false;
     for (int c = 0; c < 8; ++c) {
       const glm::ivec3 a((c & 1) ? mid.x : lo.x, (c & 2) ? mid.y : lo.y, (c & 4) ? mid.z : lo.z);
       const glm::ivec3 b((c & 1) ? hi.x : mid.x - 1, (c & 2) ? hi.y : mid.y - 1, (c & 4) ? hi.z : mid.z - 1);
-      if (a.x <= b.x && a.y <= b.y && a.z <= b.z) any |= fillBlock(o, a, b, outside, value, at);
+      if (a.x <= b.x && a.y <= b.y && a.z <= b.z) fillBlock(o, a, b, value, at);
     }
-    return any;
+    return;
   }
-  bool any = false;
   for (int k = lo.z; k <= hi.z; ++k)
     for (int j = lo.y; j <= hi.y; ++j)
       for (int i = lo.x; i <= hi.x; ++i) {
         const glm::dvec3 p = voxelPosition(o, {i, j, k});
         if (farFromTheTooth(o, p)) continue;
-        const float v = value(p, hmm);
-        if (!std::isfinite(v)) throw VolumeError("phantom:tooth: a non-finite density (a bug in the phantom)");
-        at(openvdb::Coord(i, j, k)) = v;
-        any |= v > outside;
+        const auto v = value(p, hmm);
+        for (float x : v)
+          if (!std::isfinite(x)) throw VolumeError("phantom:tooth: a non-finite value (a bug in the phantom)");
+        at(openvdb::Coord(i, j, k), v);
       }
-  return any;
 }
 
-// Builds a sparse grid by a pure function of each voxel's position, a leaf
-// (8³ voxels) at a time on TBB's threads: only blocks that may hold material
-// are computed (a block deep inside one tissue by its centre alone), and no
-// dense copy of the box is ever made (at 25 µm the box is 738 M voxels, 3 GB
-// of floats, the tooth a tenth of it). Values at or below
-// `outside` stay background, as VolumeBuilder stores them: any split over
-// threads gives the same grid.
-template <class F>
-VoxelVolume fillPhantom(const ToothPhantomOptions& o, float outside, F&& value) {
+// Builds N sparse grids by a pure function of each voxel's position (N
+// channels: `value` returns std::array<float, N>), a leaf (8³ voxels) at a time
+// on TBB's threads: only blocks that may hold material are computed (a block
+// deep inside one tissue by its centre alone), and no dense copy of the box is
+// ever made (at 25 µm the box is 738 M voxels, 3 GB of floats, the tooth a
+// tenth of it). Values at or below the channel's `outside` stay background, as
+// VolumeBuilder stores them: any split over threads gives the same grids, and
+// a channel's grid is the same whether it is built alone or with others.
+template <std::size_t N, class F>
+std::vector<VoxelVolume> fillPhantom(const ToothPhantomOptions& o, const std::array<float, N>& outside,
+                                     const std::array<const char*, N>& names, F&& value) {
   using Leaf = VoxelVolume::Grid::TreeType::LeafNodeType;
   constexpr int kLeaf = int(Leaf::DIM);
   const glm::ivec3 n = o.dims, blocks = (n + kLeaf - 1) / kLeaf;
-  std::vector<std::unique_ptr<Leaf>> leaves(std::size_t(blocks.x) * blocks.y * blocks.z);
+  const std::size_t nBlocks = std::size_t(blocks.x) * blocks.y * blocks.z;
+  std::array<std::vector<std::unique_ptr<Leaf>>, N> leaves;
+  for (auto& l : leaves) l.resize(nBlocks);
   tbb::parallel_for(0, blocks.z, [&](int bz) {
-    std::array<float, Leaf::SIZE> values;
+    std::array<std::array<float, Leaf::SIZE>, N> values;
     for (int by = 0; by < blocks.y; ++by)
       for (int bx = 0; bx < blocks.x; ++bx) {
         const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kLeaf, hi = glm::min(lo + kLeaf, n) - 1;
-        values.fill(outside);
-        const bool material = fillBlock(o, lo, hi, outside, value, [&](const openvdb::Coord& c) -> float& {
-          return values[Leaf::coordToOffset(c)];
+        for (std::size_t c = 0; c < N; ++c) values[c].fill(outside[c]);
+        fillBlock(o, lo, hi, value, [&](const openvdb::Coord& at, const std::array<float, N>& v) {
+          const openvdb::Index i = Leaf::coordToOffset(at);
+          for (std::size_t c = 0; c < N; ++c) values[c][i] = v[c];
         });
-        if (!material) continue;
-        auto leaf = std::make_unique<Leaf>(openvdb::Coord(lo.x, lo.y, lo.z), outside, false);
-        for (openvdb::Index i = 0; i < Leaf::SIZE; ++i)
-          if (values[i] > outside) leaf->setValueOn(i, values[i]);
-        leaves[(std::size_t(bz) * blocks.y + by) * blocks.x + bx] = std::move(leaf);
+        const std::size_t b = (std::size_t(bz) * blocks.y + by) * blocks.x + bx;
+        for (std::size_t c = 0; c < N; ++c) {
+          std::unique_ptr<Leaf> leaf;
+          for (openvdb::Index i = 0; i < Leaf::SIZE; ++i)
+            if (values[c][i] > outside[c]) {
+              if (!leaf) leaf = std::make_unique<Leaf>(openvdb::Coord(lo.x, lo.y, lo.z), outside[c], false);
+              leaf->setValueOn(i, values[c][i]);
+            }
+          leaves[c][b] = std::move(leaf);
+        }
       }
   });
   openvdb::initialize();  // idempotent and thread-safe
-  VoxelVolume::Grid::Ptr grid = VoxelVolume::Grid::create(outside);
-  grid->setName("density");  // as VolumeBuilder names the grids the readers make
-  for (auto& leaf : leaves)
-    if (leaf) grid->tree().addLeaf(leaf.release());
-  return VoxelVolume(grid, n, glm::dvec3(o.voxelSize), outside);
+  std::vector<VoxelVolume> out;
+  for (std::size_t c = 0; c < N; ++c) {
+    VoxelVolume::Grid::Ptr grid = VoxelVolume::Grid::create(outside[c]);
+    grid->setName(names[c]);  // as VolumeBuilder names the grids the readers make
+    for (auto& leaf : leaves[c])
+      if (leaf) grid->tree().addLeaf(leaf.release());
+    out.emplace_back(grid, n, glm::dvec3(o.voxelSize), outside[c]);
+  }
+  return out;
 }
 
 }  // namespace
@@ -307,12 +329,27 @@ ToothPhantomOptions parsePhantomUrl(const std::string& url) {
 
 VoxelVolume makeToothPhantom(const ToothPhantomOptions& o) {
   checkVolumeShape("phantom:tooth", o.dims, glm::dvec3(o.voxelSize));
-  return fillPhantom(o, ToothDensities::air, [&](const glm::dvec3& p, double hmm) { return densityAt(p, o.socket, hmm); });
+  return std::move(fillPhantom<1>(o, {ToothDensities::air}, {"density"}, [&](const glm::dvec3& p, double hmm) {
+                     return std::array<float, 1>{densityAt(p, o.socket, hmm)};
+                   }).front());
 }
 
 VoxelVolume makeToothPhantomLabels(const ToothPhantomOptions& o) {
   checkVolumeShape("phantom:tooth-labels", o.dims, glm::dvec3(o.voxelSize));
-  return fillPhantom(o, 0.f, [&](const glm::dvec3& p, double hmm) { return float(labelAt(p, o.socket, hmm)); });
+  return std::move(fillPhantom<1>(o, {0.f}, {"density"}, [&](const glm::dvec3& p, double hmm) {
+                     return std::array<float, 1>{float(labelAt(p, o.socket, hmm))};
+                   }).front());
+}
+
+ToothPhantomWithLabels makeToothPhantomWithLabels(const ToothPhantomOptions& o) {
+  checkVolumeShape("phantom:tooth", o.dims, glm::dvec3(o.voxelSize));
+  std::vector<VoxelVolume> both =
+      fillPhantom<2>(o, {ToothDensities::air, 0.f}, {"density", "density"}, [&](const glm::dvec3& p, double hmm) {
+        const double tooth = toothDistance(p), pulp = pulpDistance(p);
+        return std::array<float, 2>{densityAt(p, tooth, pulp, o.socket, hmm),
+                                    float(labelAt(p, tooth, [pulp] { return pulp; }, o.socket, hmm))};
+      });
+  return {std::move(both[0]), std::move(both[1])};
 }
 
 float toothPhantomVoxel(const ToothPhantomOptions& o, glm::ivec3 ijk) {

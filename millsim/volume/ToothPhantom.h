@@ -46,6 +46,13 @@ VoxelVolume makeToothPhantom(const ToothPhantomOptions& options);
 // The phantom's tissue labels (ToothLabel), voxel for voxel with
 // makeToothPhantom(options): every voxel with material there has a label.
 VoxelVolume makeToothPhantomLabels(const ToothPhantomOptions& options);
+// Both at once, from one evaluation of the tooth's distances per voxel (what a
+// scene whose url and labelUrl name the same phantom loads): each equal voxel
+// for voxel to the one built alone.
+struct ToothPhantomWithLabels {
+  VoxelVolume densities, labels;
+};
+ToothPhantomWithLabels makeToothPhantomWithLabels(const ToothPhantomOptions& options);
 // "phantom:tooth-labels[?the phantom's options]": the labels of the phantom
 // with those options. Whether a url names them, and reading it (VolumeError).
 bool isPhantomLabelsUrl(const std::string& url);

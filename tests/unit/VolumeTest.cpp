@@ -301,7 +301,8 @@ TEST(ToothPhantom, IsDeterministic) {
 // The phantom is built sparse, a leaf at a time, skipping blocks the tooth
 // cannot reach (issue 44: at 25 µm the dense box was 3 GB): it must equal
 // every voxel computed alone, densities and labels, with and without the
-// socket, at two resolutions (the block test's margin scales with h).
+// socket, at two resolutions (the block test's margin scales with h). Built
+// together in one pass (a scene with both urls), each is the same grid.
 TEST(ToothPhantom, TheSparseBuildHasEveryVoxelsOwnValue) {
   for (const char* url : {"phantom:tooth?size=96,96,66", "phantom:tooth?size=128,128,88&socket=1",
                           "phantom:tooth?size=200,180,120&voxel=0.00008"}) {
@@ -326,6 +327,10 @@ TEST(ToothPhantom, TheSparseBuildHasEveryVoxelsOwnValue) {
     EXPECT_EQ(density.activeVoxels(), material);
     EXPECT_EQ(labels.activeVoxels(), labelled);
     EXPECT_GT(material, 10000u);
+    const ToothPhantomWithLabels both = makeToothPhantomWithLabels(o);
+    EXPECT_EQ(both.densities.contentHash(), density.contentHash());
+    EXPECT_EQ(both.labels.contentHash(), labels.contentHash());
+    EXPECT_EQ(both.labels.activeVoxels(), labelled);
   }
 }
 
