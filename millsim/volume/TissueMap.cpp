@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "millsim/volume/Tissue.h"
 
@@ -47,33 +51,53 @@ std::unique_ptr<TissueMap> TissueMap::build(const VoxelVolume& volume, const std
   std::vector<double> belowSum(map->entries_.size(), 0.0);
 
   // Same topology as the densities: every material voxel gets a label, air
-  // stays background. Walked serially (a few ms for a tooth), so the result
-  // and the counts do not depend on threads.
+  // stays background. Leaves on TBB's threads (serially the walk was 1 s of a
+  // 25 µm lesson's opening), each chunk of kChunk leaves summed apart and the
+  // chunks added in order: the counts and sums do not depend on the split.
   map->labels_ = LabelGrid::create(0);
   map->labels_->setTree(std::make_shared<LabelGrid::TreeType>(volume.grid().tree(), 0, openvdb::TopologyCopy()));
   const VoxelVolume::Grid::TreeType& density = volume.grid().tree();
-  auto labelAcc = labelVolume ? std::make_unique<VoxelVolume::Grid::ConstAccessor>(labelVolume->grid().getConstAccessor())
-                              : nullptr;
-  for (auto leaf = map->labels_->tree().beginLeaf(); leaf; ++leaf) {
-    const auto* densityLeaf = density.probeConstLeaf(leaf->origin());
-    for (auto v = leaf->beginValueOn(); v; ++v) {
-      const float d = densityLeaf ? densityLeaf->getValue(v.pos()) : density.getValue(v.getCoord());
-      const float l = labelAcc ? labelAcc->getValue(v.getCoord()) : -1.f;
-      int entry = 0;
-      for (std::size_t t = 0; t < tissues.size() && entry == 0; ++t) {
-        const Tissue& ts = *tissues[t];
-        const glm::vec2 r = ts.densityRange.get();
-        const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : labelOf[t] >= 0 && std::lround(l) == labelOf[t];
-        if (match) entry = int(t) + 1;
-      }
-      v.setValue(entry);
-      ++map->counts_[std::size_t(entry)];
-      if (d < isoValue) {
-        ++map->below_[std::size_t(entry)];
-        belowSum[std::size_t(entry)] += d;
+  const VoxelVolume::Grid::TreeType* labelTree = labelVolume ? &labelVolume->grid().tree() : nullptr;
+  std::vector<LabelGrid::TreeType::LeafNodeType*> leaves;
+  map->labels_->tree().getNodes(leaves);
+  const std::size_t nEntries = map->entries_.size();
+  struct Sums {
+    std::vector<std::uint64_t> counts, below;
+    std::vector<double> belowSum;
+  };
+  constexpr std::size_t kChunk = 64;
+  std::vector<Sums> chunks((leaves.size() + kChunk - 1) / kChunk);
+  tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
+    Sums& sums = chunks[c];
+    sums.counts.assign(nEntries, 0), sums.below.assign(nEntries, 0), sums.belowSum.assign(nEntries, 0.0);
+    for (std::size_t i = c * kChunk; i < std::min(leaves.size(), (c + 1) * kChunk); ++i) {
+      auto& leaf = *leaves[i];
+      const auto* densityLeaf = density.probeConstLeaf(leaf.origin());
+      const auto* labelLeaf = labelTree ? labelTree->probeConstLeaf(leaf.origin()) : nullptr;
+      for (auto v = leaf.beginValueOn(); v; ++v) {
+        const float d = densityLeaf ? densityLeaf->getValue(v.pos()) : density.getValue(v.getCoord());
+        const float l = !labelTree ? -1.f : labelLeaf ? labelLeaf->getValue(v.pos()) : labelTree->getValue(v.getCoord());
+        int entry = 0;
+        for (std::size_t t = 0; t < tissues.size() && entry == 0; ++t) {
+          const Tissue& ts = *tissues[t];
+          const glm::vec2 r = ts.densityRange.get();
+          const bool match = ts.byDensity() ? (d >= r.x && d < r.y) : labelOf[t] >= 0 && std::lround(l) == labelOf[t];
+          if (match) entry = int(t) + 1;
+        }
+        v.setValue(entry);
+        ++sums.counts[std::size_t(entry)];
+        if (d < isoValue) {
+          ++sums.below[std::size_t(entry)];
+          sums.belowSum[std::size_t(entry)] += d;
+        }
       }
     }
-  }
+  });
+  for (const Sums& sums : chunks)
+    for (std::size_t e = 0; e < nEntries; ++e) {
+      map->counts_[e] += sums.counts[e], map->below_[e] += sums.below[e];
+      belowSum[e] += sums.belowSum[e];
+    }
   for (std::size_t e = 0; e < map->entries_.size(); ++e)
     map->entries_[e].densityBelowSurface =
         map->below_[e] > 0 ? float(belowSum[e] / double(map->below_[e])) : std::numeric_limits<float>::quiet_NaN();

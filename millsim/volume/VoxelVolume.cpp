@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "millsim/volume/VolumeBuilder.h"
 
 namespace millsim {
@@ -69,20 +71,46 @@ VoxelVolume VoxelVolume::fromDense(const float* values, glm::ivec3 dims, glm::dv
   return builder.finish();
 }
 
+// Both passes leaf by leaf on TBB's threads (a 25 µm tooth is 50 M voxels:
+// half a second serially), each chunk of leaves summed apart; every figure is
+// a count, a minimum or a maximum, so the result does not depend on the split.
+// Every active value is a leaf's: the constructor voxelises active tiles.
 VoxelVolume::DensitySummary VoxelVolume::densitySummary(float iso) const {
+  std::vector<const Grid::TreeType::LeafNodeType*> leaves;
+  grid_->tree().getNodes(leaves);
+  constexpr std::size_t kChunk = 256;
+  const std::size_t nChunks = (leaves.size() + kChunk - 1) / kChunk;
+  auto forChunks = [&](auto&& visit) {  // visit(chunk, value) for each active value of the chunk's leaves
+    tbb::parallel_for(std::size_t(0), nChunks, [&](std::size_t c) {
+      for (std::size_t i = c * kChunk; i < std::min(leaves.size(), (c + 1) * kChunk); ++i)
+        for (auto v = leaves[i]->cbeginValueOn(); v; ++v) visit(c, *v);
+    });
+  };
+  std::vector<DensitySummary> parts(nChunks);
+  forChunks([&](std::size_t c, float v) {
+    DensitySummary& p = parts[c];
+    p.min = p.voxels == 0 ? v : std::min(p.min, v), p.max = p.voxels == 0 ? v : std::max(p.max, v);
+    ++p.voxels, p.aboveIso += v > iso;
+  });
   DensitySummary s;
-  for (auto it = grid_->cbeginValueOn(); it; ++it) {
-    const float v = *it;
-    s.min = s.voxels == 0 ? v : std::min(s.min, v), s.max = s.voxels == 0 ? v : std::max(s.max, v);
-    ++s.voxels, s.aboveIso += v > iso;
+  for (const DensitySummary& p : parts) {
+    if (p.voxels == 0) continue;
+    s.min = s.voxels == 0 ? p.min : std::min(s.min, p.min), s.max = s.voxels == 0 ? p.max : std::max(s.max, p.max);
+    s.voxels += p.voxels, s.aboveIso += p.aboveIso;
   }
   if (s.voxels == 0) return s;
   // Percentiles from a histogram of the range: two passes, no copy of the voxels.
   constexpr int kBins = 4096;
-  std::vector<std::uint64_t> bins(kBins, 0);
   const double width = (double(s.max) - double(s.min)) / kBins;
   auto bin = [&](float v) { return width > 0.0 ? std::min(kBins - 1, int((double(v) - s.min) / width)) : 0; };
-  for (auto it = grid_->cbeginValueOn(); it; ++it) ++bins[std::size_t(bin(*it))];
+  std::vector<std::vector<std::uint64_t>> chunkBins(nChunks);
+  forChunks([&](std::size_t c, float v) {
+    if (chunkBins[c].empty()) chunkBins[c].assign(kBins, 0);
+    ++chunkBins[c][std::size_t(bin(v))];
+  });
+  std::vector<std::uint64_t> bins(kBins, 0);
+  for (const auto& b : chunkBins)
+    for (std::size_t i = 0; i < b.size(); ++i) bins[i] += b[i];
   auto percentile = [&](double fraction) {
     const double want = fraction * double(s.voxels);
     std::uint64_t seen = 0;

@@ -120,6 +120,44 @@ TEST(TissueMap, ChoosesByLabelAndRefusesAMismatchedLabelVolume) {
   EXPECT_THROW(TissueMap::build(density, {enamel.get()}, nullptr), VolumeError);
 }
 
+// The map is built leaf by leaf on TBB's threads, the counts summed per chunk
+// of leaves: every material voxel is classified once, as one serial walk does
+// (the phantom at 0.1 mm spans thousands of leaves; tissues by label and by
+// density, first match wins).
+TEST(TissueMap, TheParallelBuildClassifiesEveryVoxelOnce) {
+  const ToothPhantomOptions o;
+  const VoxelVolume density = makeToothPhantom(o), labels = makeToothPhantomLabels(o);
+  std::vector<std::shared_ptr<Tissue>> owned;
+  for (int label : {kToothEnamel, kToothDentin, kToothPulp}) {
+    owned.push_back(std::make_shared<Tissue>());
+    owned.back()->name.set("label " + std::to_string(label));
+    owned.back()->label.set(label);
+  }
+  owned.push_back(tissue("by density", {-999.f, 2000.f}, 1.f));  // what no label took (cementum)
+  std::vector<const Tissue*> list;
+  for (const auto& t : owned) list.push_back(t.get());
+  const float iso = 700.f;
+  const auto map = TissueMap::build(density, list, &labels, iso);
+  std::vector<std::uint64_t> counts(list.size() + 1, 0), below(list.size() + 1, 0);
+  std::vector<double> belowSum(list.size() + 1, 0.0);
+  auto l = labels.grid().getConstAccessor();
+  for (auto v = density.grid().cbeginValueOn(); v; ++v) {
+    const int label = int(std::lround(l.getValue(v.getCoord())));
+    std::size_t entry = 0;
+    for (std::size_t t = 0; t < 3 && entry == 0; ++t) entry = label == list[t]->label.get() ? t + 1 : 0;
+    if (entry == 0 && *v >= -999.f && *v < 2000.f) entry = 4;
+    ++counts[entry];
+    if (*v < iso) ++below[entry], belowSum[entry] += *v;
+    ASSERT_EQ(map->labelAt(v.getCoord().x(), v.getCoord().y(), v.getCoord().z()), int(entry)) << v.getCoord();
+  }
+  ASSERT_GT(density.grid().tree().leafCount(), 1000u);
+  EXPECT_EQ(map->voxelCounts(), counts);
+  EXPECT_EQ(map->belowSurfaceCounts(), below);
+  EXPECT_GT(counts[4], 1000u) << "the density tissue took the cementum";
+  for (std::size_t e = 1; e < counts.size(); ++e)
+    if (below[e] > 0) EXPECT_NEAR(map->entries()[e].densityBelowSurface, belowSum[e] / double(below[e]), 1e-3) << e;
+}
+
 TEST(TissueMap, PhantomLabelUrlsCarryThePhantomsOptions) {
   EXPECT_TRUE(isPhantomLabelsUrl("phantom:tooth-labels?size=32,32,22"));
   EXPECT_FALSE(isPhantomLabelsUrl("phantom:tooth?size=32,32,22"));

@@ -751,6 +751,35 @@ TEST(MaterialBlocks, SaysNoOnlyWhereNothingWithinTheRadiusIsMaterial) {
 // The stored densities summarised for `millsim check` (VoxelVolume::densitySummary).
 constexpr float kSummaryAir = -1000.f;
 
+// Summed leaf by leaf on TBB's threads, in chunks of leaves: the same figures
+// as one walk over every stored value (the grid spans many chunks; a reader's
+// active tile becomes voxels too).
+TEST(VoxelVolumeDensitySummary, TheParallelSummaryEqualsOneWalk) {
+  VoxelVolume::Grid::Ptr grid = VoxelVolume::Grid::create(kSummaryAir);
+  grid->tree().addTile(2, openvdb::Coord(0), 500.f, true);  // 128³ voxels of one value
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> at(128, 400);
+  std::uniform_real_distribution<float> value(-900.f, 3000.f);
+  for (int i = 0; i < 200000; ++i) grid->tree().setValueOn(openvdb::Coord(at(rng), at(rng), at(rng)), value(rng));
+  const VoxelVolume vol(grid, glm::ivec3(401), glm::dvec3(1e-4), kSummaryAir);
+  ASSERT_GT(vol.grid().tree().leafCount(), 10000u) << "many chunks of leaves";
+  std::vector<float> all;
+  for (auto it = vol.grid().cbeginValueOn(); it; ++it)
+    for (openvdb::Index64 n = 0; n < it.getVoxelCount(); ++n) all.push_back(*it);
+  std::sort(all.begin(), all.end());
+  ASSERT_GT(all.size(), std::size_t(128 * 128 * 128)) << "the tile's voxels";
+  const VoxelVolume::DensitySummary s = vol.densitySummary(700.f);
+  EXPECT_EQ(s.voxels, all.size());
+  EXPECT_EQ(s.voxels, vol.activeVoxels());
+  EXPECT_EQ(s.aboveIso, std::uint64_t(all.end() - std::upper_bound(all.begin(), all.end(), 700.f)));
+  EXPECT_EQ(s.min, all.front());
+  EXPECT_EQ(s.max, all.back());
+  const float bin = (all.back() - all.front()) / 4096.f;  // percentiles are bin centres
+  EXPECT_NEAR(s.p10, all[all.size() / 10], bin);
+  EXPECT_NEAR(s.p50, all[all.size() / 2], bin);
+  EXPECT_NEAR(s.p90, all[all.size() * 9 / 10], bin);
+}
+
 TEST(VoxelVolumeDensitySummary, CountsRangeAndPercentilesOfTheStoredDensities) {
   // 1000 voxels of 1, 2, ..., 1000 and as many of air, which is not stored.
   const glm::ivec3 d(20, 10, 10);
