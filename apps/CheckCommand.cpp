@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "Commands.h"
+#include "StderrProgress.h"
 #include "VolumeReport.h"
 #include "millsim/core/FieldValues.h"
 #include "millsim/core/NodeRegistry.h"
@@ -66,6 +67,8 @@ void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     options.strict = *strict;
     applySetOptions(options, *sets);
     options.plugins.allowAnyPath = global.allowPluginPath;
+    StderrProgress progress;
+    options.progress = &progress;
     LoadResult r = loadSceneFile(*scene, builtinRegistry(), options);
     std::cerr << r.report();
     if (!r.ok()) {

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "Commands.h"
+#include "StderrProgress.h"
 #include "NumberArgs.h"
 #include "TrajectoryReach.h"
 #include "ImageArgs.h"
@@ -55,6 +56,8 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& result) {
       LoadOptions lo;
       lo.plugins.allowAnyPath = global.allowPluginPath;
       lo.strict = args->strict;
+      StderrProgress progress;
+      lo.progress = &progress;
       LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
       std::cerr << r.report();
       if (!r.ok()) return;

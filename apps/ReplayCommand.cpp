@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "Commands.h"
+#include "StderrProgress.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
 #include "TrajectoryReach.h"
@@ -60,6 +61,8 @@ void addReplayCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     lo.plugins.allowAnyPath = global.allowPluginPath;
     lo.strict = args->strict;
     applySetOptions(lo, args->sets);
+    StderrProgress progress;
+    lo.progress = &progress;
     LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
     std::cerr << r.report();
     if (!r.ok()) {

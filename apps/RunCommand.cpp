@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "Commands.h"
+#include "StderrProgress.h"
 #include "ImageArgs.h"
 #include "NumberArgs.h"
 #include "TrajectoryReach.h"
@@ -78,6 +79,8 @@ void addRunCommand(CLI::App& app, const GlobalOptions& global, int& result) {
     lo.plugins.allowAnyPath = global.allowPluginPath;
     lo.strict = args->strict;
     applySetOptions(lo, args->sets);
+    StderrProgress progress;
+    lo.progress = &progress;
     LoadResult r = loadSceneFile(args->scene, builtinRegistry(), lo);
     std::cerr << r.report();
     result = kExitBadInput;

@@ -7,6 +7,8 @@
 
 namespace millsim {
 
+class LoadProgress;
+
 struct SourceLocation {
   std::string file;  // as given to the loader (or "<string>")
   int line = 0;      // 1-based; 0 = unknown
@@ -38,8 +40,12 @@ public:
   std::size_t errorCount() const { return errorCount_; }
   const std::vector<Diagnostic>& all() const { return items_; }
   std::vector<Diagnostic> take() { return std::move(items_); }
+  // Who hears of the load's long steps (Progress.h); none by default.
+  void setProgress(LoadProgress* listener) { progress_ = listener; }
+  LoadProgress* progress() const { return progress_; }
 
 private:
+  LoadProgress* progress_ = nullptr;
   std::size_t maxErrors_;
   std::size_t errorCount_ = 0;
   std::vector<Diagnostic> items_;

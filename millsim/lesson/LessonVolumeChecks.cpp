@@ -9,6 +9,7 @@
 
 #include "millsim/core/Diagnostics.h"
 #include "millsim/core/FieldValues.h"
+#include "millsim/core/Progress.h"
 #include "millsim/core/Scene.h"
 #include "millsim/lesson/ForbiddenRegion.h"
 #include "millsim/lesson/MillingTarget.h"
@@ -58,6 +59,7 @@ void checkSoftTissues(const Scene& scene, DiagnosticSink& sink) {
 void checkTargets(const Scene& scene, DiagnosticSink& sink) {
   std::vector<RegionResult> start;
   try {
+    const ProgressStep step(sink.progress(), "lesson regions: measuring their material at the start");
     start = RegionAccounting::atStart(scene);
   } catch (const std::exception&) {  // an unknown tissue: said above
     return;

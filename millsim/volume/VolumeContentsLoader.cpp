@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "millsim/core/Progress.h"
 #include "millsim/volume/MeshFile.h"
 #include "millsim/volume/MeshVolume.h"
 #include "millsim/volume/PointShell.h"
@@ -25,6 +26,11 @@
 namespace millsim {
 
 namespace {
+
+// "VolumeObject 'Tooth'", as progress names it.
+std::string name(const VolumeObject& node) {
+  return "VolumeObject" + (node.defName().empty() ? std::string() : " '" + node.defName() + "'");
+}
 
 class VoxelContents final : public VolumeContents {
 public:
@@ -90,6 +96,7 @@ void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesys
       labels = std::move(preloaded_);
       break;
     }
+    const ProgressStep step(sink.progress(), name(node) + ": reading its labels " + u);
     try {
       labels = std::make_unique<VoxelVolume>(isPhantomLabelsUrl(u) ? loadPhantomLabels(u) : loadVolume(u, base, 0.f).volume);
       break;
@@ -115,6 +122,7 @@ void VoxelContents::classifyTissues(const VolumeObject& node, const std::filesys
     unnamed = true;
   }
   if (unnamed) return;
+  const ProgressStep step(sink.progress(), name(node) + ": classifying its tissues");
   try {
     tissueMap_ = TissueMap::build(volume_, list, labels.get(), isoValue_, parts_);
   } catch (const VolumeError& e) {
@@ -183,9 +191,12 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
         throw VolumeError(u + ": a mesh is voxelised in cubic voxels; give voxelSize the same along x, y and z (it is " +
                           node.voxelSize.toString() + ")");
       std::optional<VoxelVolume> phantomLabels;
+      const std::optional<ToothPhantomOptions> both = meshParts ? std::nullopt : samePhantomBoth(node, u);
       LoadedVolume loaded = [&] {
+        const ProgressStep step(sink.progress(), name(node) + ": reading " + (both ? "the densities and labels of " : "") +
+                                                     (meshParts ? "its mesh parts" : u));
         if (meshParts) return loadMeshParts(urls, base, mesh);
-        if (const auto both = samePhantomBoth(node, u)) {
+        if (both) {
           ToothPhantomWithLabels made = makeToothPhantomWithLabels(*both);
           phantomLabels.emplace(std::move(made.labels));
           return LoadedVolume{std::move(made.densities), "phantom", u};

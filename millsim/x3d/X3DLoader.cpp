@@ -43,6 +43,7 @@ public:
       : options_(options), sink_(options.maxErrors), scene_(std::make_unique<Scene>()),
         protos_(*this, sink_, options.allowFileAccess, options.maxProtoElements) {
     scene_->registry = registry;
+    sink_.setProgress(options.progress);
   }
 
   LoadResult load(std::string text, std::string label, fs::path dir, fs::path canonical) {

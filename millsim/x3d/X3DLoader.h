@@ -38,6 +38,8 @@ struct LoadOptions {
     std::string text() const { return type + "." + field + "=" + value; }
   };
   std::vector<FieldOverride> overrides;
+  // Hears the load's long steps as they start and end (millsim/core/Progress.h); not owned.
+  LoadProgress* progress = nullptr;
 };
 
 // Parses TYPE.FIELD=VALUE; std::nullopt if it has no '.' before the '=' or an empty part.

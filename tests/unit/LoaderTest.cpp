@@ -5,6 +5,7 @@
 #include "SceneText.h"
 #include "TestFiles.h"
 #include "millsim/core/NodeRegistry.h"
+#include "millsim/core/Progress.h"
 #include "millsim/std/Inline.h"
 #include "millsim/std/Material.h"
 #include "millsim/std/Shape.h"
@@ -214,6 +215,31 @@ TEST(Loader, EveryShippedSceneLoads) {
   }
   // x3d/ ships default.x3d and three lessons: finding none would pass vacuously.
   EXPECT_GE(scenes, 4u) << "x3d scenes found under " MILLSIM_SOURCE_DIR "/x3d";
+}
+
+// The load's long steps reach a listener (the CLI shows them: at 25 µm a
+// lesson takes seconds to open), each started before it finishes, in the
+// order they are done. The default lesson's phantom url and labelUrl are
+// read in one pass, and the labels not again.
+TEST(Loader, LongStepsReachTheProgressListenerInOrder) {
+  struct Recorder final : LoadProgress {
+    std::vector<std::string> events;
+    void started(const std::string& step) override { events.push_back("start " + step); }
+    void finished(const std::string& step, double seconds) override {
+      events.push_back("end " + step);
+      EXPECT_GE(seconds, 0.0) << step;
+    }
+  } recorder;
+  LoadOptions options;
+  options.progress = &recorder;
+  auto r = loadSceneFile(MILLSIM_SOURCE_DIR "/x3d/default.x3d", builtinRegistry(), options);
+  ASSERT_TRUE(r.ok()) << r.report();
+  const std::string reading = "VolumeObject 'Tooth': reading the densities and labels of phantom:tooth";
+  const std::string tissues = "VolumeObject 'Tooth': classifying its tissues";
+  const std::string regions = "lesson regions: measuring their material at the start";
+  const std::vector<std::string> want = {"start " + reading, "end " + reading, "start " + tissues,
+                                         "end " + tissues,   "start " + regions, "end " + regions};
+  EXPECT_EQ(recorder.events, want);
 }
 
 // --set TYPE.FIELD=VALUE (a sweep's field axis): every node of the type, before
