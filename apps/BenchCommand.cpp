@@ -1,4 +1,4 @@
-// millsim bench accuracy | physical | rates | procedure | stability | zwidth: the measurements behind docs/results.md
+// millsim bench accuracy | physical | rates | procedure | resolution | stability | zwidth: the measurements behind docs/results.md
 // and docs/accuracy.md
 // (scripts/bench runs them). Renderers are named by registry type and
 // configured by field name, so a new renderer type needs no change here.
@@ -586,6 +586,8 @@ void addBenchCommand(CLI::App& app, int& result) {
       ->check(CLI::Range(0L, 1000000L));
   proc->add_option("--csv", pr->csv, "Append one row per renderer and phase to this CSV");
   onRun(proc, pr, runProcedure, result);
+
+  addBenchResolution(bench, result);
 
   auto* zw = bench->add_subcommand(
       "zwidth", "Largest stable stiffness per renderer and grip, closed loop at 1 kHz (Z-width sweep)");

@@ -36,8 +36,11 @@ std::size_t phaseOf(const FrameRecord& r) {
 }  // namespace
 
 ProcedureResult measureProcedure(const RendererSpec& spec, const std::string& label, const std::string& scenePath,
-                                 const std::string& trajectoryPath, long bruteEvery) {
-  LoadResult loaded = loadSceneFile(scenePath, builtinRegistry());
+                                 const std::string& trajectoryPath, long bruteEvery,
+                                 const std::vector<LoadOptions::FieldOverride>& overrides) {
+  LoadOptions load;
+  load.overrides = overrides;
+  LoadResult loaded = loadSceneFile(scenePath, builtinRegistry(), load);
   if (!loaded.ok()) throw std::runtime_error(loaded.report());
   Scene& scene = *loaded.scene;
   HapticsDevice* device = findDevice(scene);

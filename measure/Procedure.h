@@ -18,6 +18,7 @@
 
 #include "measure/ConstantWork.h"
 #include "measure/Renderers.h"
+#include "millsim/x3d/X3DLoader.h"
 
 namespace millsim::measure {
 
@@ -39,7 +40,9 @@ struct ProcedureResult {
 };
 
 // Throws std::runtime_error if the scene does not load or has no device.
+// `overrides`: fields set on the scene as `--set` does (bench resolution's voxel size).
 ProcedureResult measureProcedure(const RendererSpec& spec, const std::string& label, const std::string& scenePath,
-                                 const std::string& trajectoryPath, long bruteEvery = 100);
+                                 const std::string& trajectoryPath, long bruteEvery = 100,
+                                 const std::vector<LoadOptions::FieldOverride>& overrides = {});
 
 }  // namespace millsim::measure
