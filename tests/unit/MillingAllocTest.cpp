@@ -15,6 +15,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "measure/Renderers.h"
 #include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/volume/Milling.h"
 #include "millsim/volume/PointShell.h"
@@ -99,6 +100,43 @@ TEST_P(MillingAlloc, SteadyStateFramesAllocateNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scales, MillingAlloc, ::testing::Values(1, 2, 3));
+
+// Issue 44: the same at micro-CT voxels, for every registered renderer (the
+// phantom at its extent, 25.6 × 25.6 × 17.6 mm): 50 µm here, 25 µm under
+// `soak` (building that phantom alone takes seconds). A stamp there spans
+// more blocks than the point shell's scratch holds, so the update's tiling
+// path runs too.
+void fineFramesAllocateNothing(int micrometres) {
+  const double h = micrometres * 1e-6;
+  const glm::ivec3 dims(glm::round(glm::dvec3(25.6e-3, 25.6e-3, 17.6e-3) / h));
+  const std::vector<std::string> types = measure::registeredRenderers();
+  ASSERT_GE(types.size(), 3u);
+  for (const std::string& type : types) {
+    SCOPED_TRACE(type);
+    // A tooth of its own: on the last one's hole the burr would meet only air.
+    VoxelVolume volume = makeToothPhantom(ToothPhantomOptions{dims, h, false});
+    VoxelScene scene;
+    scene.addVolume(volume, glm::dmat4(1.0), 700.0);
+    auto algorithm = measure::makeRenderer({type, {}})->compile(kTool, scene);
+    algorithm->reset(Pose{{0.0, 12e-3, 0.0}, glm::dquat(1, 0, 0, 0)});
+    long n = 0;
+    double removed = 0.0;
+    auto frame = [&] {
+      const HapticOutput out = algorithm->step(scene, HapticInput{deviceAt(n++), 1e-3, true});
+      if (out.burrCuts) removed += scene.mill(out.burrCentre, out.drawnTool.orientation, kTool.head());
+    };
+    for (int i = 0; i < 300; ++i) frame();  // first contact, first cuts
+    allocations = 0;
+    counting = true;
+    for (int i = 0; i < 1500; ++i) frame();
+    counting = false;
+    EXPECT_GT(removed, 0.0) << "the burr must cut, or this tests nothing";
+    EXPECT_EQ(allocations.load(), 0) << "allocations in 1500 milling frames at " << micrometres << " µm";
+  }
+}
+
+TEST(MillingAllocFine, At50MicronsEveryRendererAllocatesNothing) { fineFramesAllocateNothing(50); }
+TEST(MillingAllocFine, SoakAt25MicronsEveryRendererAllocatesNothing) { fineFramesAllocateNothing(25); }
 
 // A non-round head (a tapered burr) mills through the head entry with the
 // drawn tool's orientation, as HapticLoop does: no allocation either.
