@@ -27,6 +27,8 @@
 #include "millsim/volume/ToothPhantom.h"
 #include "millsim/volume/VoxelScene.h"
 #include "AnalyticScenes.h"
+#include "TestFiles.h"
+#include "millsim/volume/VolumeIO.h"
 
 using namespace millsim;
 using namespace millsim::test;
@@ -156,6 +158,42 @@ TEST(TissueMap, TheParallelBuildClassifiesEveryVoxelOnce) {
   EXPECT_GT(counts[4], 1000u) << "the density tissue took the cementum";
   for (std::size_t e = 1; e < counts.size(); ++e)
     if (below[e] > 0) EXPECT_NEAR(map->entries()[e].densityBelowSurface, belowSum[e] / double(below[e]), 1e-3) << e;
+}
+
+// Label files are read on another thread while the densities are: the same
+// tissues as the phantom's own labels give, and a labelUrl list none of whose
+// volumes loads is still one error naming every url and why.
+TEST(TissueMap, LabelFilesReadAheadGiveTheSameTissuesAndTheSameErrors) {
+  millsim::test::ScratchDir dir;
+  const ToothPhantomOptions o{{64, 64, 44}, 0.4e-3, false};
+  writeNrrd(makeToothPhantom(o), dir.path() / "tooth.nrrd");
+  writeNrrd(makeToothPhantomLabels(o), dir.path() / "labels.nrrd");
+  auto scene = [&](const std::string& url, const std::string& labelUrl) {
+    return millsim::test::x3d("<VolumeObject url='" + url + "' labelUrl='" + labelUrl + "' isoValue='700'>"
+                              "<Tissue name='enamel' label='1'/><Tissue name='dentin' label='2'/>"
+                              "<Tissue name='pulp' label='3'/></VolumeObject>");
+  };
+  auto counts = [](const LoadResult& r) {
+    const auto* map = r.scene->nodesOfType<VolumeObject>().front()->tissueMap();
+    return map ? map->voxelCounts() : std::vector<std::uint64_t>{};
+  };
+  const LoadResult files = loadSceneString(scene("\"tooth.nrrd\"", "\"labels.nrrd\""), (dir.path() / "a.x3d").string(),
+                                           builtinRegistry());
+  ASSERT_TRUE(files.ok()) << files.report();
+  const LoadResult phantom = loadSceneString(
+      scene("\"phantom:tooth?size=64,64,44&amp;voxel=0.0004\"", "\"phantom:tooth-labels?size=64,64,44&amp;voxel=0.0004\""),
+      (dir.path() / "b.x3d").string(), builtinRegistry());
+  ASSERT_TRUE(phantom.ok()) << phantom.report();
+  EXPECT_EQ(counts(files), counts(phantom));
+  EXPECT_GT(counts(files).at(3), 0u) << "the pulp";
+
+  const LoadResult missing = loadSceneString(scene("\"tooth.nrrd\"", "\"gone.nrrd\" \"gone.vdb\""),
+                                             (dir.path() / "c.x3d").string(), builtinRegistry());
+  ASSERT_FALSE(missing.ok());
+  const std::string report = missing.report();
+  EXPECT_NE(report.find("VolumeObject could not load any of its labelUrl volumes:"), std::string::npos) << report;
+  EXPECT_NE(report.find("gone.nrrd: no such file"), std::string::npos) << report;
+  EXPECT_NE(report.find("gone.vdb: no such file"), std::string::npos) << report;
 }
 
 TEST(TissueMap, PhantomLabelUrlsCarryThePhantomsOptions) {
