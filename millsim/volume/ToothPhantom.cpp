@@ -184,7 +184,7 @@ DeepInside deepInside(const ToothPhantomOptions& o, const glm::dvec3& c, double 
 // from one evaluation of the distances): nothing where no voxel can hold
 // material, one value where the block is deep inside one tissue, else halves
 // (down to 2³ voxels, then voxel by voxel). `value(p, h)` gives a voxel's
-// channels, `at(c)` the channels' slots of voxel c.
+// channels, `at(c, v)` stores them as voxel c's.
 template <class F, class At>
 void fillBlock(const ToothPhantomOptions& o, glm::ivec3 lo, glm::ivec3 hi, F& value, At&& at) {
   const double hmm = o.voxelSize * 1000.0;

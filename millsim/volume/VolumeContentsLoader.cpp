@@ -207,7 +207,7 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
   const auto& urls = node.url.get();
   const bool meshParts = urls.size() > 1 && std::all_of(urls.begin(), urls.end(), [](const std::string& u) { return isMeshFile(u); });
   // The labels read on another thread while the densities are (two files, two
-  // cores: a 25 µm NRRD and its labels took 4.3 s each, one after the other).
+  // cores: a 25 µm NRRD and its label NRRD open in 0.77 of the time).
   // Not the phantom's pair, which one pass makes, nor beside a mesh, whose
   // parts are its labels (a labelUrl there is an error).
   std::future<LabelsRead> labelsAhead;
