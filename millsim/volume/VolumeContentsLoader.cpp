@@ -268,7 +268,10 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
       failures += "\n  " + failed.back();
     } catch (const std::bad_alloc&) {
       // A header that declares more voxels than memory holds: an error for this url, not a crash.
-      failed.push_back(u + ": out of memory while reading the volume (its header declares more data than fits)");
+      failed.push_back(u + ": out of memory while reading the volume (" +
+                       (u.rfind("phantom:", 0) == 0 ? std::string("the phantom at this size needs more memory than there is")
+                                                    : std::string("its header declares more data than fits")) +
+                       ")");
       failures += "\n  " + failed.back();
     }
   }

@@ -11,7 +11,15 @@
 
 namespace millsim {
 
-VoxelVolume::~VoxelVolume() = default;
+// The last owner frees the grid's nodes itself, serially: OpenVDB's own
+// Tree::clear() (its destructor's) first gathers the nodes into a vector, and
+// when memory has run out that allocation throws inside the destructor and
+// the process aborts (a 25 µm lesson under a 700 MB cap did, unwinding from
+// the first std::bad_alloc). RootNode::clear() deletes the nodes without
+// allocating; the tree it leaves is empty, so its destructor allocates nothing.
+VoxelVolume::~VoxelVolume() {
+  if (grid_ && grid_.use_count() == 1) grid_->tree().root().clear();
+}
 VoxelVolume::VoxelVolume(const VoxelVolume&) = default;
 VoxelVolume::VoxelVolume(VoxelVolume&&) noexcept = default;
 VoxelVolume& VoxelVolume::operator=(const VoxelVolume&) = default;
