@@ -371,7 +371,8 @@ rr = {r["renderer"]: r for r in rates if r["resolution"] in paper_res.values() a
 if rr:
     w("- **Time**: at the paper's resolutions every algorithm needs well under 1 ms per frame on the phantom (p99: "
       + ", ".join(f"{k} {fmt(num(v['p99_us']))} µs" for k, v in sorted(rr.items())) +
-      "), also at 8× voxels: pick the resolution from the Pareto plot for the error you need, not for time.")
+      "), also at 8× voxels: pick the resolution from the Pareto plot for the error you need, not for time. Not yet "
+      "at micro-CT voxels: at 25 µm a milling frame costs several hundred µs (see Cost against resolution).")
 w("- The lines above are generated from the tables by scripts/bench-report.py. Our reading of this run (written by "
   "hand, re-check it when the numbers move): **BarbicRenderer** as the default for a milling simulator — it never "
   "tunnels, renders real shaft torque, keeps the drawn tool on the surface and costs microseconds; "
