@@ -9,6 +9,7 @@
 #include <map>
 #include <new>
 #include <optional>
+#include <system_error>
 #include <vector>
 
 #include "millsim/core/Progress.h"
@@ -213,7 +214,10 @@ std::unique_ptr<VolumeContents> loadVolumeContents(VolumeObject& node, Diagnosti
   std::future<LabelsRead> labelsAhead;
   if (!node.tissues.get().empty() && !node.labelUrl.get().empty() && !urls.empty() && !isMeshFile(urls.front()) &&
       !samePhantomBoth(node, urls.front()))
-    labelsAhead = std::async(std::launch::async, [labelUrls = node.labelUrl.get(), base] { return readLabels(labelUrls, base); });
+    try {
+      labelsAhead = std::async(std::launch::async, [labelUrls = node.labelUrl.get(), base] { return readLabels(labelUrls, base); });
+    } catch (const std::system_error&) {  // no thread to be had: they are read after the densities, as before
+    }
   for (const std::string& u : meshParts ? std::vector<std::string>{urls.front()} : urls) {
     try {
       if (mesh.voxelSize < 0.0 && isMeshFile(u))

@@ -16,8 +16,9 @@ class Scene;
 class VolumeContents;
 class VolumeObject;
 
-// Bumped whenever this table changes incompatibly.
-inline constexpr int kVolumeAbiVersion = 2;
+// Bumped whenever this table, or a type it passes, changes incompatibly (3:
+// DiagnosticSink carries the load's progress listener).
+inline constexpr int kVolumeAbiVersion = 3;
 
 struct VolumeModule {
   int abiVersion;
