@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "BenchResolution.h"
 #include "Commands.h"
 #include "measure/Accuracy.h"
 #include "measure/Physical.h"
@@ -18,6 +19,7 @@
 #include "measure/Rates.h"
 #include "measure/Stability.h"
 #include "measure/ZWidth.h"
+#include "millsim/volume/VoxelSizeRange.h"
 
 namespace millsim::app {
 
@@ -587,7 +589,22 @@ void addBenchCommand(CLI::App& app, int& result) {
   proc->add_option("--csv", pr->csv, "Append one row per renderer and phase to this CSV");
   onRun(proc, pr, runProcedure, result);
 
-  addBenchResolution(bench, result);
+  auto* res = bench->add_subcommand(
+      "resolution", "Load time, peak memory and frame times per renderer of the scene's tooth phantom at each voxel size");
+  auto rs = std::make_shared<ResolutionArgs>();
+  res->add_option("--scene", rs->scene, "A scene whose VolumeObject is the tooth phantom, e.g. x3d/default.x3d")
+      ->required()
+      ->check(CLI::ExistingFile);
+  res->add_option("--trajectory", rs->trajectory, "The procedure, e.g. x3d/trajectories/section-8-2.csv")
+      ->required()
+      ->check(CLI::ExistingFile);
+  res->add_option("--voxel", rs->voxels, "Voxel sizes in metres (default 0.0001,0.00005,0.000025)")
+      ->delimiter(',')
+      ->check(CLI::Range(kMinVoxelSize, kMaxVoxelSize));
+  res->add_option("--renderer", rs->renderers, "Renderer type (repeatable; default: every registered one)");
+  res->add_option("--csv", rs->csv, "Write one row per voxel size, renderer and phase as CSV");
+  res->add_option("--md", rs->md, "Write the Markdown table here (default: stdout)");
+  onRun(res, rs, runResolution, result);
 
   auto* zw = bench->add_subcommand(
       "zwidth", "Largest stable stiffness per renderer and grip, closed loop at 1 kHz (Z-width sweep)");

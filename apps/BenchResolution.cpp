@@ -11,21 +11,15 @@
 #include <map>
 #include <sstream>
 
+#include "BenchResolution.h"
 #include "Commands.h"
 #include "measure/Resolution.h"
-#include "millsim/volume/VoxelSizeRange.h"
 
 namespace millsim::app {
 
 namespace {
 
 using namespace millsim::measure;
-
-struct ResolutionArgs {
-  std::vector<std::string> renderers;
-  std::vector<double> voxels{1e-4, 5e-5, 2.5e-5};
-  std::string scene, trajectory, csv, md;
-};
 
 // A figure; "–" for one not measured (NaN, or a negative memory size).
 std::string num(double v, int precision = 3) {
@@ -53,6 +47,8 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
   return n < 2 ? NAN : (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+}  // namespace
+
 int runResolution(const ResolutionArgs& a) {
   std::vector<double> voxels = a.voxels;
   std::sort(voxels.rbegin(), voxels.rend());  // coarse first: a slow fine size comes last
@@ -75,11 +71,10 @@ int runResolution(const ResolutionArgs& a) {
               << load.materialVoxels << " voxels of material, loaded in " << num(load.seconds) << " s, peak "
               << num(load.peakMiB, 4) << " MiB\n";
     material.push_back(double(load.materialVoxels)), loadSeconds.push_back(load.seconds), loadPeak.push_back(load.peakMiB);
-    const auto overrides = phantomAtVoxelSize(a.scene, h);
     const std::string label = num(h * 1e6) + " µm";
     for (const std::string& type : types) {
       resetPeakResident();
-      const ProcedureResult r = measureProcedure({type, {}}, label, a.scene, a.trajectory, 0, overrides);
+      const ProcedureResult r = measureProcedure({type, {}}, label, a.scene, a.trajectory, 0, load.overrides);
       const double peak = peakResidentMiB();
       const ProcedurePhase* milling = nullptr;
       const ProcedurePhase* all = nullptr;
@@ -121,34 +116,6 @@ int runResolution(const ResolutionArgs& a) {
     std::cout << text;
   }
   return kExitOk;
-}
-
-}  // namespace
-
-void addBenchResolution(CLI::App* bench, int& result) {
-  auto* verb = bench->add_subcommand(
-      "resolution", "Load time, peak memory and frame times per renderer of the scene's tooth phantom at each voxel size");
-  auto a = std::make_shared<ResolutionArgs>();
-  verb->add_option("--scene", a->scene, "A scene whose VolumeObject is the tooth phantom, e.g. x3d/default.x3d")
-      ->required()
-      ->check(CLI::ExistingFile);
-  verb->add_option("--trajectory", a->trajectory, "The procedure, e.g. x3d/trajectories/section-8-2.csv")
-      ->required()
-      ->check(CLI::ExistingFile);
-  verb->add_option("--voxel", a->voxels, "Voxel sizes in metres (default 0.0001,0.00005,0.000025)")
-      ->delimiter(',')
-      ->check(CLI::Range(kMinVoxelSize, kMaxVoxelSize));
-  verb->add_option("--renderer", a->renderers, "Renderer type (repeatable; default: every registered one)");
-  verb->add_option("--csv", a->csv, "Write one row per voxel size, renderer and phase as CSV");
-  verb->add_option("--md", a->md, "Write the Markdown table here (default: stdout)");
-  verb->callback([verb, a, &result] {
-    try {
-      result = runResolution(*a);
-    } catch (const std::exception& e) {
-      std::cerr << "millsim bench " << verb->get_name() << ": error: " << e.what() << "\n";
-      result = kExitBadInput;
-    }
-  });
 }
 
 }  // namespace millsim::app

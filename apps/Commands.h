@@ -42,7 +42,6 @@ inline void applySetOptions(LoadOptions& options, const std::vector<std::string>
 }
 
 void addBenchCommand(CLI::App& app, int& result);
-void addBenchResolution(CLI::App* bench, int& result);  // a verb of bench, in BenchResolution.cpp
 void addCheckCommand(CLI::App& app, const GlobalOptions& global, int& result);
 void addDevicesCommand(CLI::App& app, int& result);
 void addNodesCommand(CLI::App& app, int& result);

@@ -56,8 +56,9 @@ std::vector<LoadOptions::FieldOverride> phantomAtVoxelSize(const std::string& sc
 ResolutionLoad measureLoad(const std::string& scenePath, double h) {
   ResolutionLoad r;
   r.voxelSize = h;
+  r.overrides = phantomAtVoxelSize(scenePath, h, &r.dims);
   LoadOptions options;
-  options.overrides = phantomAtVoxelSize(scenePath, h, &r.dims);
+  options.overrides = r.overrides;
   const bool reset = resetPeakResident();
   const auto t0 = std::chrono::steady_clock::now();
   LoadResult loaded = loadSceneFile(scenePath, builtinRegistry(), options);

@@ -26,6 +26,7 @@ struct ResolutionLoad {
   std::uint64_t materialVoxels = 0;  // the densities' active voxels
   double seconds = 0.0;              // wall time of loading the scene: volumes, tissues, regions
   double peakMiB = -1.0;             // peak resident memory while loading (-1: the kernel would not say)
+  std::vector<LoadOptions::FieldOverride> overrides;  // what made the scene's phantom this size
 };
 ResolutionLoad measureLoad(const std::string& scenePath, double h);
 

@@ -15,7 +15,8 @@
 // milling, update() recomputes only the coarse voxels a stamp can have
 // affected (the changed voxels' box, widened by the neighbour and normal
 // stencils) from one dense copy of that box, and merges them into the buckets
-// they fall in. An update never allocates.
+// they fall in. An update never allocates. A build does the same for every
+// bucket, on TBB's threads, and lays the points out in bucket order.
 //
 // Memory: all points live in one array (points_, with each point's cell in
 // cells_), a bucket is a range of it [begin, begin + capacity) of which it

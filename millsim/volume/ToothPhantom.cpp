@@ -364,20 +364,30 @@ int toothPhantomLabelVoxel(const ToothPhantomOptions& o, glm::ivec3 ijk) {
 
 namespace {
 const std::string kLabelsPrefix = "phantom:tooth-labels";
-}
 
-bool isPhantomLabelsUrl(const std::string& url) { return url.rfind(kLabelsPrefix, 0) == 0; }
-
-VoxelVolume loadPhantomLabels(const std::string& url) {
-  if (!isPhantomLabelsUrl(url)) throw VolumeError(url + ": not a phantom label url (expected " + kLabelsPrefix + ")");
+// Runs f, saying a VolumeError of the density url (what parsePhantomUrl and
+// the shape check name) with the labels url the author wrote.
+template <class F> auto namingTheLabelsUrl(const std::string& url, F&& f) {
   try {
-    return makeToothPhantomLabels(parsePhantomUrl("phantom:tooth" + url.substr(kLabelsPrefix.size())));
+    return f();
   } catch (const VolumeError& e) {
-    // parsePhantomUrl names the density url; name the one the author wrote.
     std::string m = e.what();
     if (m.rfind("phantom:tooth", 0) == 0) m = url + m.substr(m.find(':', 8));
     throw VolumeError(m);
   }
+}
+}  // namespace
+
+bool isPhantomLabelsUrl(const std::string& url) { return url.rfind(kLabelsPrefix, 0) == 0; }
+
+ToothPhantomOptions parsePhantomLabelsUrl(const std::string& url) {
+  if (!isPhantomLabelsUrl(url)) throw VolumeError(url + ": not a phantom label url (expected " + kLabelsPrefix + ")");
+  return namingTheLabelsUrl(url, [&] { return parsePhantomUrl("phantom:tooth" + url.substr(kLabelsPrefix.size())); });
+}
+
+VoxelVolume loadPhantomLabels(const std::string& url) {
+  const ToothPhantomOptions o = parsePhantomLabelsUrl(url);
+  return namingTheLabelsUrl(url, [&] { return makeToothPhantomLabels(o); });
 }
 
 }  // namespace millsim

@@ -54,8 +54,10 @@ struct ToothPhantomWithLabels {
 };
 ToothPhantomWithLabels makeToothPhantomWithLabels(const ToothPhantomOptions& options);
 // "phantom:tooth-labels[?the phantom's options]": the labels of the phantom
-// with those options. Whether a url names them, and reading it (VolumeError).
+// with those options. Whether a url names them, its options, and reading it
+// (VolumeError, naming the labels url).
 bool isPhantomLabelsUrl(const std::string& url);
+ToothPhantomOptions parsePhantomLabelsUrl(const std::string& url);
 VoxelVolume loadPhantomLabels(const std::string& url);
 // Density of the phantom at a point (metres, tooth frame centred like the volume).
 float toothPhantomDensity(const glm::dvec3& p, bool socket);

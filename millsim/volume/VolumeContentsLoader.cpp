@@ -169,7 +169,7 @@ std::optional<ToothPhantomOptions> samePhantomBoth(const VolumeObject& node, con
     return std::nullopt;
   try {
     const ToothPhantomOptions a = parsePhantomUrl(url);
-    const ToothPhantomOptions b = parsePhantomUrl("phantom:tooth" + labelUrls.front().substr(std::string("phantom:tooth-labels").size()));
+    const ToothPhantomOptions b = parsePhantomLabelsUrl(labelUrls.front());
     if (a.dims == b.dims && a.voxelSize == b.voxelSize && a.socket == b.socket) return a;
   } catch (const VolumeError&) {
   }

@@ -156,8 +156,11 @@ TEST(TissueMap, TheParallelBuildClassifiesEveryVoxelOnce) {
   EXPECT_EQ(map->voxelCounts(), counts);
   EXPECT_EQ(map->belowSurfaceCounts(), below);
   EXPECT_GT(counts[4], 1000u) << "the density tissue took the cementum";
-  for (std::size_t e = 1; e < counts.size(); ++e)
-    if (below[e] > 0) EXPECT_NEAR(map->entries()[e].densityBelowSurface, belowSum[e] / double(below[e]), 1e-3) << e;
+  for (std::size_t e = 1; e < counts.size(); ++e) {
+    if (below[e] > 0) {
+      EXPECT_NEAR(map->entries()[e].densityBelowSurface, belowSum[e] / double(below[e]), 1e-3) << e;
+    }
+  }
 }
 
 // Label files are read on another thread while the densities are: the same
