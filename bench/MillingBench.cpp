@@ -50,13 +50,15 @@ ToothPhantomOptions phantomAt(long micrometres) {
   return o;
 }
 
-// args: scale, full rebuild (1) or incremental update (0), voxel size (µm: 100, 50 or 25).
+// args: scale, full rebuild (1) or incremental update (0), voxel size (µm: 100, 50 or 25),
+// the volume's millingBudget (densities read a frame; 0: no limit).
 void BM_MillingFrame(benchmark::State& state) {
   const int scale = int(state.range(0));
   const bool rebuild = state.range(1) != 0;
   VoxelVolume volume = makeToothPhantom(phantomAt(state.range(2)));
   VoxelScene scene;
   scene.addVolume(volume, glm::dmat4(1.0), 700.0);
+  scene.volume(0).millingBudget = long(state.range(3));
   // What BarbicRenderer's compile() registers.
   PointShell& fine = const_cast<PointShell&>(scene.shell(0, scale));
   scene.pointShell(0, 2 * scale);
@@ -94,30 +96,36 @@ void BM_MillingFrame(benchmark::State& state) {
   state.counters["cutting"] = double(cutting) / double(std::max<long>(1, n));
   state.counters["points"] = double(scene.pointShell(0, scale).size());
   const int key = scale * 1000 + int(state.range(2));
+  if (state.range(3) != 0) return;  // a budget's frame is not the rebuild's baseline
   if (!rebuild) incrementalP50()[key] = p50;
   else if (incrementalP50().count(key)) state.counters["x_incremental"] = p50 / incrementalP50()[key];
 }
 // Each scale's incremental run first (the rebuild run divides by its p50);
 // a full rebuild takes milliseconds, so it runs fewer frames.
-BENCHMARK(BM_MillingFrame)->Args({1, 0, 100})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MillingFrame)->Args({1, 1, 100})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MillingFrame)->Args({2, 0, 100})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MillingFrame)->Args({2, 1, 100})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MillingFrame)->Args({3, 0, 100})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MillingFrame)->Args({3, 1, 100})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({1, 0, 100, 0})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({1, 1, 100, 0})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({2, 0, 100, 0})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({2, 1, 100, 0})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({3, 0, 100, 0})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({3, 1, 100, 0})->Iterations(20)->UseManualTime()->Unit(benchmark::kMicrosecond);
 // Micro-CT resolution (issue 44): the same hole at 50 and 25 µm voxels.
-BENCHMARK(BM_MillingFrame)->Args({1, 0, 50})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MillingFrame)->Args({1, 0, 25})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({1, 0, 50, 0})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({1, 0, 25, 0})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+// Paced: the same frames with VolumeObject.millingBudget's default and half of it.
+BENCHMARK(BM_MillingFrame)->Args({1, 0, 50, 2000})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({1, 0, 25, 2000})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MillingFrame)->Args({1, 0, 25, 1000})->Iterations(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 // The stamp alone (Miller::stamp and its dirty-block marks), without the
 // scene's sampler window and shells: the same hole at 100, 50 and 25 µm.
-// Counters: thread-CPU p50 / p99 / max (µs), voxels changed a stamp (p50).
+// Counters: thread-CPU p50 / p99 / max (µs), voxels changed a stamp (p50),
+// densities read a stamp (p50, p99: the unit of VolumeObject.millingBudget).
 void BM_Stamp(benchmark::State& state) {
   VoxelVolume volume = makeToothPhantom(phantomAt(state.range(0)));
   Miller miller(volume, 700.f);
   DirtyBlocks dirty(volume.dims());
-  std::vector<double> cpu, changed;
-  cpu.reserve(4000), changed.reserve(4000);
+  std::vector<double> cpu, changed, read;
+  cpu.reserve(4000), changed.reserve(4000), read.reserve(4000);
   long n = 0;
   for (auto _ : state) {
     dirty.clear();
@@ -125,11 +133,15 @@ void BM_Stamp(benchmark::State& state) {
     const StampResult r = miller.stamp(burrAt(n++), kBurr, dirty);
     const double c1 = threadCpuMicros();
     state.SetIterationTime((c1 - c0) * 1e-6);
-    if (cpu.size() < cpu.capacity()) cpu.push_back(c1 - c0), changed.push_back(r.voxelsChanged);
+    if (cpu.size() < cpu.capacity())
+      cpu.push_back(c1 - c0), changed.push_back(r.voxelsChanged), read.push_back(double(r.voxelsRead));
   }
   std::sort(cpu.begin(), cpu.end());
   std::sort(changed.begin(), changed.end());
+  std::sort(read.begin(), read.end());
   state.counters["cpu_p50_us"] = cpu[cpu.size() / 2];
+  state.counters["read_p50"] = read[read.size() / 2];
+  state.counters["read_p99"] = read[std::min(read.size() - 1, read.size() * 99 / 100)];
   state.counters["cpu_p99_us"] = cpu[std::min(cpu.size() - 1, cpu.size() * 99 / 100)];
   state.counters["cpu_max_us"] = cpu.back();
   state.counters["changed_p50"] = changed[changed.size() / 2];

@@ -202,6 +202,8 @@ void HapticLoop::advance(double t, double dt, double periodUs, const Pose& devic
   if (button && out.burrCuts)
     stats_.removedVolume += tool_.round() ? scene_.mill(out.burrCentre, tool_.tipRadius)
                                           : scene_.mill(out.burrCentre, out.drawnTool.orientation, tool_.head());
+  else  // the stamps a volume's millingBudget left for the next frames
+    stats_.removedVolume += scene_.continueMilling();
   for (Publisher& p : publishers_) {
     const auto& v = scene_.volume(p.volume);
     static const std::vector<BlockOrigin> kNone;

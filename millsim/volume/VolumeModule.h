@@ -17,8 +17,8 @@ class VolumeContents;
 class VolumeObject;
 
 // Bumped whenever this table, or a type it passes, changes incompatibly (3:
-// DiagnosticSink carries the load's progress listener).
-inline constexpr int kVolumeAbiVersion = 3;
+// DiagnosticSink carries the load's progress listener; 4: VolumeObject.millingBudget).
+inline constexpr int kVolumeAbiVersion = 4;
 
 struct VolumeModule {
   int abiVersion;

@@ -57,6 +57,7 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
                                                         Miller(vox, float(iso), tissues), tissues,
                                                         DirtyBlocks(vox.dims())}));
   Volume& added = *volumes_.back();
+  if (node) added.millingBudget = node->millingBudget.get();
   added.axisAligned = lin[0][1] == 0.0 && lin[0][2] == 0.0 && lin[1][0] == 0.0 && lin[1][2] == 0.0 &&
                       lin[2][0] == 0.0 && lin[2][1] == 0.0;
   added.worldToIndexScale = glm::dvec3(lin[0][0], lin[1][1], lin[2][2]);
@@ -151,14 +152,37 @@ double VoxelScene::hardness(const glm::dvec3& world) const {
 }
 
 double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
+  for (const std::unique_ptr<Volume>& p : volumes_) {
+    Volume& v = *p;
+    if (!v.millable.load(std::memory_order_relaxed)) continue;
+    const glm::dvec3 local = glm::dvec3(v.placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
+    v.miller.queue(local, radius / v.placement.worldPerLocal);
+  }
+  return continueMilling();
+}
+
+double VoxelScene::mill(const glm::dvec3& centreWorld, const glm::dquat& toolOrientation, const BurrHead& head) {
+  if (head.shape == BurrShape::Round) return mill(centreWorld, head.radius);
+  const glm::dvec3 axisWorld = toolOrientation * glm::dvec3(0.0, 1.0, 0.0);
+  for (const std::unique_ptr<Volume>& p : volumes_) {
+    Volume& v = *p;
+    if (!v.millable.load(std::memory_order_relaxed)) continue;
+    const glm::dvec3 local = glm::dvec3(v.placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
+    const glm::dvec3 axisLocal = glm::dmat3(v.placement.worldToLocal) * axisWorld;  // unit after normalising
+    v.miller.queue(local, axisLocal, head.scaled(1.0 / v.placement.worldPerLocal));
+  }
+  return continueMilling();
+}
+
+double VoxelScene::continueMilling() {
   double removed = 0.0;
   for (std::size_t i = 0; i < volumes_.size(); ++i) {
     Volume& v = *volumes_[i];
-    if (!v.millable.load(std::memory_order_relaxed)) continue;
-    const glm::dvec3 local = glm::dvec3(v.placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
+    // A stamp begun while the volume was millable is finished: it was felt.
+    if (!v.miller.busy()) continue;
     // Clearing first keeps `changed` to this call's blocks (O(blocks), no allocation).
     v.changed.clear();
-    const StampResult res = v.miller.stamp(local, radius / v.placement.worldPerLocal, v.changed);
+    const StampResult res = v.miller.work(v.millingBudget, v.changed);
     removed += res.removedVolume;
     if (v.changed.empty()) continue;
     v.sampler.refresh(v.changed.voxelLo(), v.changed.voxelHi());  // its window holds copies
@@ -170,26 +194,8 @@ double VoxelScene::mill(const glm::dvec3& centreWorld, double radius) {
   return removed;
 }
 
-double VoxelScene::mill(const glm::dvec3& centreWorld, const glm::dquat& toolOrientation, const BurrHead& head) {
-  if (head.shape == BurrShape::Round) return mill(centreWorld, head.radius);
-  const glm::dvec3 axisWorld = toolOrientation * glm::dvec3(0.0, 1.0, 0.0);
-  double removed = 0.0;
-  for (std::size_t i = 0; i < volumes_.size(); ++i) {
-    Volume& v = *volumes_[i];
-    if (!v.millable.load(std::memory_order_relaxed)) continue;
-    const glm::dvec3 local = glm::dvec3(v.placement.worldToLocal * glm::dvec4(centreWorld, 1.0));
-    const glm::dvec3 axisLocal = glm::dmat3(v.placement.worldToLocal) * axisWorld;  // unit after normalising
-    v.changed.clear();
-    const StampResult res =
-        v.miller.stamp(local, axisLocal, head.scaled(1.0 / v.placement.worldPerLocal), v.changed);
-    removed += res.removedVolume;
-    if (v.changed.empty()) continue;
-    v.sampler.refresh(v.changed.voxelLo(), v.changed.voxelHi());  // its window holds copies
-    ++v.millEpoch;
-    for (Shell& s : shells_)
-      if (s.volume == i) s.pending.add(v.changed);
-  }
-  return removed;
+bool VoxelScene::millingPending() const {
+  return std::any_of(volumes_.begin(), volumes_.end(), [](const std::unique_ptr<Volume>& v) { return v->miller.busy(); });
 }
 
 }  // namespace millsim

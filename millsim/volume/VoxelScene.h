@@ -48,6 +48,9 @@ public:
     // call's blocks instead (Shell::pending).
     DirtyBlocks changed;
     std::uint64_t millEpoch = 0;
+    // VolumeObject.millingBudget: the densities a frame's stamps may read
+    // (0: no limit); what is left over is walked in the next frames (Miller::work).
+    long millingBudget = 0;
     // worldToIndexLinear is diagonal (a volume scaled and moved, not turned:
     // every shipped lesson) and these are its diagonal: three products
     // instead of nine a sample, the same result for finite points.
@@ -92,13 +95,19 @@ public:
   double hardness(const glm::dvec3& world) const override;
 
   // Removes material with a burr sphere at a world point (every millable
-  // volume). Returns the volume removed (m³, in each volume's local units).
-  // Volumes that changed get a new `changed` list and `millEpoch`.
+  // volume), within each volume's millingBudget: a stamp the budget does not
+  // cover is finished by the next calls, and one that waits for it is
+  // replaced by the newer. Returns the volume removed (m³, in each volume's
+  // local units). Volumes that changed get a new `changed` list and `millEpoch`.
   double mill(const glm::dvec3& centreWorld, double radius);
   // The same with a burr head (world metres) of the tool with this world
   // orientation (the head's axis is the tool's local +Y). A round head is
   // exactly mill(centre, head.radius).
   double mill(const glm::dvec3& centreWorld, const glm::dquat& toolOrientation, const BurrHead& head);
+  // A frame that does not cut: walks on the stamps the budget left, as mill() would.
+  double continueMilling();
+  // Whether a volume has a stamp left to walk.
+  bool millingPending() const;
 
 private:
   // A point shell in use by this scene, and the milling it has not merged yet.

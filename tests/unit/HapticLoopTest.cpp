@@ -413,3 +413,55 @@ TEST(HapticLoop, LiveLimitsAndEnabledApplyFromTheNextFrame) {
   EXPECT_EQ(dev.forces[2].x, 0.0) << "disabled";
   EXPECT_NEAR(dev.forces[3].x, 0.5, 1e-12) << "enabled again; a zero limit is refused";
 }
+
+// A stamp the volume's millingBudget could not finish in its frame is
+// finished by the frames after it, button released or not, and graphics
+// gets every piece.
+TEST(HapticLoop, FramesAfterTheCutFinishWhatTheMillingBudgetLeft) {
+  class CutsAt final : public HapticAlgorithm {
+  public:
+    explicit CutsAt(glm::dvec3 c) : c_(c) {}
+    void reset(const Pose&) override {}
+    HapticOutput step(HapticScene&, const HapticInput& in) override {
+      HapticOutput out;
+      out.drawnTool = in.device;
+      out.burrCentre = c_ + glm::dvec3(0.0, -1e-5 * double(frames_++), 0.0);  // sinking 10 µm a frame
+      out.burrCuts = true;
+      return out;
+    }
+    std::string name() const override { return "CutsAt"; }
+
+  private:
+    glm::dvec3 c_;
+    long frames_ = 0;
+  };
+  ToothPhantomOptions o = parsePhantomUrl("phantom:tooth?size=64,64,44");
+  VoxelVolume volume = makeToothPhantom(o);
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), 700.0);
+  scene.volume(0).millingBudget = 100;
+  BlockChannel channel(4096);
+  VolumeReplica replica(volume);
+  const glm::dvec3 c(0.0, volume.voxelSize().y * volume.dims().y * 0.3, 0.0);
+  // The button is held for 5 frames, then released.
+  const Trajectory t({{0.0, Pose{glm::dvec3(0.0), glm::dquat(1, 0, 0, 0)}, true},
+                      {0.0045, Pose{glm::dvec3(0.0), glm::dquat(1, 0, 0, 0)}, true},
+                      {0.0046, Pose{glm::dvec3(0.0), glm::dquat(1, 0, 0, 0)}, false},
+                      {0.2, Pose{glm::dvec3(0.0), glm::dquat(1, 0, 0, 0)}, false}});
+  HapticLoop loop(scene, std::make_unique<CutsAt>(c), makeTrajectoryDriver(t, false), settings());
+  loop.publishBlocks(0, channel);
+  loop.stepSimulated();
+  EXPECT_TRUE(scene.millingPending()) << "a 1 mm burr reads more than 100 densities";
+  for (int f = 1; f < 200; ++f) {
+    loop.stepSimulated();
+    replica.apply(channel);
+  }
+  EXPECT_FALSE(scene.millingPending());
+  // The last stamp queued, frame 4's, was walked to its end: made again at
+  // once it changes nothing.
+  DirtyBlocks d(volume.dims());
+  Miller again(volume, 700.f);
+  EXPECT_GT(loop.stats().removedVolume, 0.0);
+  EXPECT_EQ(replica.volume().contentHash(), volume.contentHash()) << "graphics missed a piece";
+  EXPECT_EQ(again.stamp(c + glm::dvec3(0.0, -4e-5, 0.0), settings().tool.tipRadius, d).voxelsChanged, 0);
+}
