@@ -52,12 +52,13 @@ public:
                     "url, or phantom:tooth-labels[?the phantom's options] (1 enamel, 2 dentin, 3 pulp, 4 cementum, "
                     "5 bone, 6 ligament)."};
   SFBool millable{this, "millable", Access::InputOutput, true, "Whether the burr removes material; live: a change applies from the next frame."};
-  SFInt32 millingBudget{this, "millingBudget", Access::InitializeOnly, 1000,
-                        "Densities the burr's stamps may read in one haptic frame (0: no limit). A stamp reads about "
-                        "(burr radius / voxel)² of them (600 for a 0.6 mm burr at 0.1 mm voxels, 8000 at 25 µm); one "
-                        "the budget does not cover is finished over the next frames, the newest burr position next, "
-                        "so a frame's milling costs about the same at every resolution and the cut trails the burr by "
-                        "a few frames.",
+  SFInt32 millingBudget{this, "millingBudget", Access::InitializeOnly, 0,
+                        "Densities the burr's stamps may read in one haptic frame (0: no limit, every stamp in its "
+                        "frame). A stamp reads about (burr radius / voxel)² of them (600 for a 0.6 mm burr at 0.1 mm "
+                        "voxels, 8000 at 25 µm); one the budget does not cover is finished over the next frames, the "
+                        "newest burr position next, so a frame's milling costs about the same at every resolution "
+                        "and the cut trails the burr by a few frames (which can destabilise SurfacePointRenderer "
+                        "with a light hand: docs/algorithms.md).",
                         Range::closed(0, 100000000)};
   SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed so far (m³)."};
   SFString loadedUrl{this, "loadedUrl", Access::OutputOnly, "", "The url that was loaded."};
