@@ -77,13 +77,6 @@ public:
   StampResult work(long budget, DirtyBlocks& dirty);
   // Whether a stamp is being walked or waits.
   bool busy() const { return walk_.active || queued_.valid; }
-
-  // m³ removed so far. The scene thread of `millsim run` reads it while the
-  // haptic thread mills (VolumeObject.removedVolume, live): a relaxed atomic
-  // with one writer, so the read is race-free and the stamp never waits.
-  double totalRemoved() const { return totalRemoved_.load(std::memory_order_relaxed); }
-
-private:
   // A stamp as queued: a round burr of `radius`, or a head along `axis`.
   struct Stamp {
     bool valid = false;
@@ -93,6 +86,16 @@ private:
     glm::dvec3 axis{0.0, 1.0, 0.0};
     BurrHead head{};
   };
+  // The stamp being walked and the one waiting; null when there is none.
+  const Stamp* walking() const { return walk_.active ? &walk_.stamp : nullptr; }
+  const Stamp* waiting() const { return queued_.valid ? &queued_ : nullptr; }
+
+  // m³ removed so far. The scene thread of `millsim run` reads it while the
+  // haptic thread mills (VolumeObject.removedVolume, live): a relaxed atomic
+  // with one writer, so the read is race-free and the stamp never waits.
+  double totalRemoved() const { return totalRemoved_.load(std::memory_order_relaxed); }
+
+private:
   // The stamp being walked: its voxel box in index space and the next row.
   struct Walk {
     bool active = false;

@@ -57,8 +57,8 @@ public:
                         "frame). A stamp reads about (burr radius / voxel)² of them (600 for a 0.6 mm burr at 0.1 mm "
                         "voxels, 8000 at 25 µm); one the budget does not cover is finished over the next frames, the "
                         "newest burr position next, so a frame's milling costs about the same at every resolution "
-                        "and the cut trails the burr by a few frames (which can destabilise SurfacePointRenderer "
-                        "with a light hand: docs/algorithms.md).",
+                        "while the renderers feel each stamp whole from its first frame (not with a tissue of "
+                        "hardness 0). Off by default: docs/algorithms.md, \"Milling at fine voxels\".",
                         Range::closed(0, 100000000)};
   SFFloat removedVolume{this, "removedVolume", Access::OutputOnly, 0.f, "Material removed so far (m³)."};
   SFString loadedUrl{this, "loadedUrl", Access::OutputOnly, "", "The url that was loaded."};

@@ -11,6 +11,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "millsim/haptics/BurrHead.h"
 #include "millsim/volume/FloorToInt.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -55,8 +56,45 @@ public:
     copyToWindow(glm::max(lo, windowLo_), glm::min(hi, windowLo_ + windowEdge_ - 1));
   }
 
+  // A stamp the grid does not hold yet (Milling.h, paced milling): while it
+  // is set, each corner a density reads is the lower of the grid's value and
+  // what the stamp will leave there, so a renderer feels the cut where the
+  // burr is, not where the walk has got to. Up to two: the stamp being walked
+  // and the one waiting. Only for a volume with no tissue of hardness 0
+  // (the stamp leaves those voxels; the sampler does not know them).
+  struct PendingCut {
+    bool round = true;
+    glm::dvec3 centre{0.0};  // index space
+    double radius = 0.0;     // m: the sphere's, or the head's bounding radius
+    glm::dvec3 axis{0.0, 1.0, 0.0};
+    BurrHead head{};
+  };
+  static constexpr int kMaxPendingCuts = 2;
+  // `iso` is the volume's; voxel size and ramp as the Miller's.
+  void setPendingCuts(const PendingCut* cuts, int n, float iso, const glm::dvec3& voxelSize) {
+    pendingCount_ = std::clamp(n, 0, kMaxPendingCuts);
+    iso_ = iso, h_ = voxelSize, ramp_ = (voxelSize.x + voxelSize.y + voxelSize.z) / 3.0;
+    for (int c = 0; c < pendingCount_; ++c) {
+      PendingReach& r = reach_[c];
+      pending_[c] = cuts[c];
+      const double radius = cuts[c].radius;
+      // A cell whose centre is farther than the reach, half a ramp and half
+      // its diagonal has no corner the stamp touches.
+      const double cell = radius + 0.5 * ramp_ + 0.5 * glm::length(voxelSize) + 1e-3 * ramp_;
+      r.cell2 = cell * cell;
+      // A round stamp's coverage is exactly 0 beyond r + ramp/2 and exactly 1
+      // within r − ramp/2; a relative margin of 10⁻⁹ keeps rounding on the
+      // safe side, so only the ramp between needs the square root.
+      const double outer = radius + 0.5 * ramp_, inner = radius - 0.5 * ramp_;
+      r.outer2 = outer * outer * (1.0 + 1e-9);
+      r.inner2 = inner > 0.0 ? inner * inner * (1.0 - 1e-9) : -1.0;
+    }
+  }
+  void clearPendingCuts() { pendingCount_ = 0; }
+
   // Trilinear density at an index-space point (voxel centres at integers).
   float density(const glm::dvec3& p) const {
+    if (pendingCount_ > 0) return densityWithPendingCuts(p);
     const double x = inRange(p.x), y = inRange(p.y), z = inRange(p.z);
     const int i = floorToInt(x), j = floorToInt(y), k = floorToInt(z);
     const double tx = x - i, ty = y - j, tz = z - k;
@@ -99,6 +137,50 @@ public:
   float voxel(int i, int j, int k) const { return acc_.getValue(openvdb::Coord(i, j, k)); }
 
 private:
+  // density() with the pending cuts read over the grid (out of line: the
+  // common path keeps its registers).
+  [[gnu::noinline]] float densityWithPendingCuts(const glm::dvec3& p) const {
+    const double x = inRange(p.x), y = inRange(p.y), z = inRange(p.z);
+    const int i = floorToInt(x), j = floorToInt(y), k = floorToInt(z);
+    float c[8];
+    const unsigned wi = unsigned(i) - unsigned(windowLo_.x), wj = unsigned(j) - unsigned(windowLo_.y),
+                   wk = unsigned(k) - unsigned(windowLo_.z);
+    if (wi < windowCells_ && wj < windowCells_ && wk < windowCells_) {
+      const std::size_t sy = std::size_t(windowEdge_), sx = sy * sy;
+      const float* d = window_.data() + wi * sx + wj * sy + wk;
+      c[0] = d[0], c[1] = d[sx], c[2] = d[sy], c[3] = d[sx + sy];
+      c[4] = d[1], c[5] = d[sx + 1], c[6] = d[sy + 1], c[7] = d[sx + sy + 1];
+    } else {
+      corners(i, j, k, c);
+    }
+    for (int n = 0; n < pendingCount_; ++n) {
+      const PendingCut& cut = pending_[n];
+      const PendingReach& r = reach_[n];
+      const glm::dvec3 mid = (glm::dvec3(i, j, k) + 0.5 - cut.centre) * h_;
+      if (glm::dot(mid, mid) > r.cell2) continue;
+      for (int corner = 0; corner < 8; ++corner) {
+        if (c[corner] <= air_) continue;  // air: the stamp leaves it
+        // c[] order: x fastest in bit 0, y in bit 1, z in bit 2.
+        const glm::dvec3 d = (glm::dvec3(i + (corner & 1), j + ((corner >> 1) & 1), k + (corner >> 2)) - cut.centre) * h_;
+        double coverage;
+        if (cut.round) {
+          const double d2 = glm::dot(d, d);
+          if (d2 > r.outer2) continue;
+          coverage = d2 < r.inner2 ? 1.0 : std::clamp(0.5 + (cut.radius - std::sqrt(d2)) / ramp_, 0.0, 1.0);
+        } else {
+          const double along = glm::dot(d, cut.axis);
+          const double rho = std::sqrt(std::max(0.0, glm::dot(d, d) - along * along));
+          coverage = std::clamp(0.5 - headProfileDistance(cut.head, rho, along) / ramp_, 0.0, 1.0);
+        }
+        if (coverage <= 0.0) continue;
+        // The Miller's rule (Milling.h), so the value is the one the walk will write.
+        const float now = static_cast<float>(air_ + 2.0 * (double(iso_) - air_) * (1.0 - coverage));
+        if (now < c[corner]) c[corner] = now;
+      }
+    }
+    return interpolate(c, x - i, y - j, z - k);
+  }
+
   static float interpolate(const float c[8], double tx, double ty, double tz) {
     const double x00 = c[0] + (c[1] - c[0]) * tx, x10 = c[2] + (c[3] - c[2]) * tx;
     const double x01 = c[4] + (c[5] - c[4]) * tx, x11 = c[6] + (c[7] - c[6]) * tx;
@@ -234,6 +316,14 @@ private:
   unsigned windowCells_ = 0;             // cells a side whose corners all lie in the window: edge − 1
   glm::ivec3 windowLo_{CachedLeaf::kNone / 2};  // the window's first voxel (far away: holds nothing)
   std::vector<float> window_;             // edge³, z fastest
+  int pendingCount_ = 0;                  // setPendingCuts
+  PendingCut pending_[kMaxPendingCuts];
+  struct PendingReach {
+    double cell2 = 0.0, outer2 = 0.0, inner2 = -1.0;  // m², setPendingCuts
+  } reach_[kMaxPendingCuts];
+  float iso_ = 0.f;
+  glm::dvec3 h_{1.0};
+  double ramp_ = 1.0;
 };
 
 }  // namespace millsim

@@ -58,6 +58,8 @@ void VoxelScene::addVolume(VoxelVolume& vox, const glm::dmat4& m, double iso, Vo
                                                         DirtyBlocks(vox.dims())}));
   Volume& added = *volumes_.back();
   if (node) added.millingBudget = node->millingBudget.get();
+  if (tissues)
+    for (float hardness : tissues->hardness()) added.feelsPendingCuts &= hardness > 0.f;
   added.axisAligned = lin[0][1] == 0.0 && lin[0][2] == 0.0 && lin[1][0] == 0.0 && lin[1][2] == 0.0 &&
                       lin[2][0] == 0.0 && lin[2][1] == 0.0;
   added.worldToIndexScale = glm::dvec3(lin[0][0], lin[1][1], lin[2][2]);
@@ -184,6 +186,7 @@ double VoxelScene::continueMilling() {
     v.changed.clear();
     const StampResult res = v.miller.work(v.millingBudget, v.changed);
     removed += res.removedVolume;
+    feelPendingCuts(v);
     if (v.changed.empty()) continue;
     v.sampler.refresh(v.changed.voxelLo(), v.changed.voxelHi());  // its window holds copies
     ++v.millEpoch;
@@ -192,6 +195,19 @@ double VoxelScene::continueMilling() {
       if (s.volume == i) s.pending.add(v.changed);
   }
   return removed;
+}
+
+void VoxelScene::feelPendingCuts(Volume& v) {
+  // The renderers feel what the stamps will leave, not how far the walk has
+  // got: without this the cut trails the burr, a delay inside #2's loop of
+  // force, feed and removal that set its simulated hand oscillating at 50 µm.
+  VolumeSampler::PendingCut cuts[VolumeSampler::kMaxPendingCuts];
+  int n = 0;
+  if (v.feelsPendingCuts)
+    for (const Miller::Stamp* s : {v.miller.walking(), v.miller.waiting()})
+      if (s) cuts[n++] = {s->round, v.voxels->localToIndex(s->centreLocal), s->radius, s->axis, s->head};
+  if (n > 0) v.sampler.setPendingCuts(cuts, n, float(v.placement.iso), v.voxels->voxelSize());
+  else v.sampler.clearPendingCuts();
 }
 
 bool VoxelScene::millingPending() const {

@@ -51,6 +51,9 @@ public:
     // VolumeObject.millingBudget: the densities a frame's stamps may read
     // (0: no limit); what is left over is walked in the next frames (Miller::work).
     long millingBudget = 0;
+    // Whether the sampler reads the stamps not yet walked over the grid
+    // (VolumeSampler::setPendingCuts): not with a tissue of hardness 0.
+    bool feelsPendingCuts = true;
     // worldToIndexLinear is diagonal (a volume scaled and moved, not turned:
     // every shipped lesson) and these are its diagonal: three products
     // instead of nine a sample, the same result for finite points.
@@ -123,6 +126,8 @@ private:
     DirtyBlocks pending;
   };
 
+  // Tells v's sampler of the stamps its Miller has not walked to their end.
+  static void feelPendingCuts(Volume& v);
   std::vector<std::unique_ptr<Volume>> volumes_;
   std::vector<Shell> shells_;
   double voxelSize_ = 0.0;  // 0 until a volume is added
