@@ -9,6 +9,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "millsim/volume/FloorToInt.h"
+#include "millsim/volume/StampRule.h"
 
 namespace millsim {
 
@@ -65,18 +66,13 @@ StampResult Miller::work(long budget, DirtyBlocks& dirty) {
     const Stamp& s = walk_.stamp;
     if (s.round) {
       const double radius = s.radius;
-      walkRows([radius, ramp](const glm::dvec3& d) { return std::clamp(0.5 + (radius - std::sqrt(glm::dot(d, d))) / ramp, 0.0, 1.0); },
+      walkRows([radius, ramp](const glm::dvec3& d) { return stamp::roundCoverage(std::sqrt(glm::dot(d, d)), radius, ramp); },
                left, dirty, result);
     } else {
       const BurrHead& head = s.head;
       const glm::dvec3 axis = s.axis;
-      walkRows(
-          [&head, axis, ramp](const glm::dvec3& d) {
-            const double y = glm::dot(d, axis);
-            const double rho = std::sqrt(std::max(0.0, glm::dot(d, d) - y * y));
-            return std::clamp(0.5 - headProfileDistance(head, rho, y) / ramp, 0.0, 1.0);
-          },
-          left, dirty, result);
+      walkRows([&head, axis, ramp](const glm::dvec3& d) { return stamp::headCoverage(d, axis, head, ramp); }, left,
+               dirty, result);
     }
   }
   totalRemoved_.add(result.removedVolume);
@@ -189,9 +185,7 @@ void Miller::walkRows(Coverage coverageAt, long& left, DirtyBlocks& dirty, Stamp
         const glm::dvec3 d = (glm::dvec3(i, j, k) - c) * h;
         const double coverage = coverageAt(d);
         if (coverage <= 0.0) return false;
-        // The density that leaves the voxel a (1 − coverage) material fraction:
-        // on the sphere's surface (coverage ½) that is exactly the iso-value.
-        now = static_cast<float>(air + 2.0 * (double(iso_) - air) * (1.0 - coverage));
+        now = stamp::densityLeft(air, iso_, coverage);
         if (now >= old) return false;
         // A tissue of hardness 0 (an implant, a guard a lesson sets) is never cut.
         if (tissues_ &&

@@ -13,6 +13,7 @@
 
 #include "millsim/haptics/BurrHead.h"
 #include "millsim/volume/FloorToInt.h"
+#include "millsim/volume/StampRule.h"
 #include "millsim/volume/VoxelVolume.h"
 
 namespace millsim {
@@ -162,15 +163,13 @@ private:
         if (cut.round) {
           const double d2 = glm::dot(d, d);
           if (d2 > r.outer2) continue;
-          coverage = d2 < r.inner2 ? 1.0 : std::clamp(0.5 + (cut.radius - std::sqrt(d2)) / ramp_, 0.0, 1.0);
+          coverage = d2 < r.inner2 ? 1.0 : stamp::roundCoverage(std::sqrt(d2), cut.radius, ramp_);
         } else {
-          const double along = glm::dot(d, cut.axis);
-          const double rho = std::sqrt(std::max(0.0, glm::dot(d, d) - along * along));
-          coverage = std::clamp(0.5 - headProfileDistance(cut.head, rho, along) / ramp_, 0.0, 1.0);
+          coverage = stamp::headCoverage(d, cut.axis, cut.head, ramp_);
         }
         if (coverage <= 0.0) continue;
-        // The Miller's rule (Milling.h), so the value is the one the walk will write.
-        const float now = static_cast<float>(air_ + 2.0 * (double(iso_) - air_) * (1.0 - coverage));
+        // The Miller's own rule, so the value is the one the walk will write.
+        const float now = stamp::densityLeft(air_, iso_, coverage);
         if (now < c[corner]) c[corner] = now;
       }
     }
