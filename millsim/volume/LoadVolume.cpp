@@ -19,7 +19,7 @@ namespace {
 
 const char* const kSupported =
     ".vdb, .nrrd, .nhdr, .mha, .mhd, .vti, .dcm, a folder of DICOM slices, a folder, pattern (slice_%04d.tif) or "
-    "multi-page .tif of TIFF or PNG slices, phantom:tooth, or a surface mesh (.stl, .obj, .ply) with the VolumeObject's "
+    "multi-page .tif of TIFF, PNG or BMP slices, phantom:tooth, or a surface mesh (.stl, .obj, .ply) with the VolumeObject's "
     "voxelSize";
 
 // "scheme:" at the start of a url (two or more letters, so that "C:" is not one).
@@ -57,7 +57,7 @@ bool isSliceStackPattern(const std::string& path) {
   // Only a slice file name's own %d counts: a folder may have a '%' in its name.
   const fs::path p(path);
   const std::string file = p.filename().string(), ext = asciiLower(p.extension().string());
-  if (ext != ".tif" && ext != ".tiff" && ext != ".png") return false;
+  if (ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".bmp") return false;
   const std::size_t pct = file.find('%');
   if (pct == std::string::npos) return false;
   std::size_t i = pct + 1;
@@ -72,9 +72,9 @@ bool isTiffFile(const fs::path& p) {
   return ext == ".tif" || ext == ".tiff";
 }
 
-// A folder of TIFF or PNG slices (a micro-CT stack) rather than DICOM ones:
+// A folder of TIFF, PNG or BMP slices (a micro-CT stack) rather than DICOM ones:
 // such files and no DICOM file (a stray preview .tif in a DICOM series stays DICOM).
-bool holdsTiffSlices(const fs::path& folder) {
+bool holdsImageSlices(const fs::path& folder) {
   std::error_code ec;
   bool tiff = false;
   int unnamed = 0;
@@ -83,7 +83,7 @@ bool holdsTiffSlices(const fs::path& folder) {
     const std::string ext = asciiLower(e.path().extension().string());
     if (ext == ".dcm" || ext == ".dicom") return false;
     if (ext.empty() && ++unnamed <= 16 && hasDicomMagic(e.path())) return false;
-    tiff |= isTiffFile(e.path()) || ext == ".png";
+    tiff |= isTiffFile(e.path()) || ext == ".png" || ext == ".bmp";
   }
   return tiff;
 }
@@ -173,7 +173,7 @@ LoadedVolume loadVolume(const std::string& url, const fs::path& baseDir, float a
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (!fs::exists(st)) throw VolumeError(name + ": no such file or folder");
-  if (fs::is_directory(st) && holdsTiffSlices(path))
+  if (fs::is_directory(st) && holdsImageSlices(path))
     return LoadedVolume{readSliceStack(path, airValue, voxelSize), "slices", name};
   if (fs::is_directory(st)) return LoadedVolume{readDicom(path, airValue), "dicom", name};
   // Reading a FIFO would wait forever and a device such as /dev/zero never ends.

@@ -1,14 +1,16 @@
-// Slice stacks (VolumeIO.h, readSliceStack): one greyscale TIFF or PNG per
-// slice in a folder or a printf-style pattern, or the pages of one multi-page
-// TIFF, as micro-CT scanners of extracted teeth write them. libtiff reads
-// every TIFF page (any compression it knows), libpng every PNG (rows read
-// one by one, 16-bit samples exactly as stored: no gamma); MillSim checks the
-// shape of each against the first before reading its pixels, and streams the
-// slices into a VolumeBuilder a row at a time, so memory is the sparse grid
-// and one slab. The pixel size comes from the VolumeObject's voxelSize, a
-// SkyScan-style .log beside the slices ("Image Pixel Size (um)="), or the
-// TIFF resolution tags or PNG pHYs chunk, in that order; slices are as far
-// apart as pixels are wide.
+// Slice stacks (VolumeIO.h, readSliceStack): one greyscale TIFF, PNG or BMP
+// per slice in a folder or a printf-style pattern, or the pages of one
+// multi-page TIFF, as micro-CT scanners of extracted teeth write them. libtiff
+// reads every TIFF page (strips or tiles, any compression it knows), libpng
+// every PNG (rows read one by one, 16-bit samples exactly as stored: no
+// gamma), SDL2 every BMP (BmpSlice.h); MillSim checks the shape of each
+// against the first before reading its pixels, and streams the slices into a
+// VolumeBuilder a row at a time, so memory is the sparse grid and one slab.
+// The pixel size comes from the VolumeObject's voxelSize, a SkyScan-style
+// .log beside the slices ("Image Pixel Size (um)="), or the TIFF resolution
+// tags or PNG pHYs chunk, in that order (not a BMP's pixels per metre: tools
+// write 72 or 96 dpi there whatever the scan); slices are as far apart as
+// pixels are wide.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -29,6 +31,7 @@
 #include <tiffio.h>
 
 #include "millsim/core/NaturalOrder.h"
+#include "millsim/volume/BmpSlice.h"
 #include "millsim/volume/MedicalModule.h"
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeBuilder.h"
@@ -85,7 +88,6 @@ Page pageOf(TIFF* t, const std::string& where) {
   TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photometric);
   if (samples != 1)
     throw VolumeError(where + " has " + std::to_string(samples) + " samples a pixel; a slice is one grey channel");
-  if (TIFFIsTiled(t)) throw VolumeError(where + " is a tiled TIFF; slices are read by rows: save them in strips");
   if (photometric != PHOTOMETRIC_MINISBLACK && photometric != PHOTOMETRIC_MINISWHITE)
     throw VolumeError(where + " is not greyscale (photometric " + std::to_string(photometric) + ")");
   const bool isFloat = format == SAMPLEFORMAT_IEEEFP;
@@ -117,33 +119,79 @@ bool nextPage(TIFF* t, const std::string& name) {
   return more;
 }
 
+// One row of a page's samples (host order, as libtiff gives them) as densities.
+void rowToDensities(const unsigned char* row, const Page& p, float* values) {
+  const double white = p.bits == 8 ? 255.0 : 65535.0;
+  for (int x = 0; x < p.size.x; ++x) {
+    double v;
+    if (p.bits == 8) {
+      v = p.isSigned ? double(std::int8_t(row[std::size_t(x)])) : double(row[std::size_t(x)]);
+    } else if (p.bits == 16) {
+      std::uint16_t u;
+      std::memcpy(&u, &row[std::size_t(x) * 2], 2);
+      v = p.isSigned ? double(std::int16_t(u)) : double(u);
+    } else {
+      float f;
+      std::memcpy(&f, &row[std::size_t(x) * 4], 4);
+      v = double(f);
+    }
+    if (p.minIsWhite && !p.isFloat) v = white - v;
+    values[x] = float(v);
+  }
+}
+
+// A tiled page (as some scanners and image tools write large slices) is read
+// a band of tiles at a time: one tile's height of whole rows, so memory stays
+// one band whatever the page's size.
+constexpr std::size_t kMaxTileBandBytes = std::size_t(256) << 20;
+
+void readTiledPage(TIFF* t, const Page& p, VolumeBuilder& builder, const std::string& where) {
+  std::uint32_t tw = 0, th = 0;
+  TIFFGetField(t, TIFFTAG_TILEWIDTH, &tw);
+  TIFFGetField(t, TIFFTAG_TILELENGTH, &th);
+  const std::size_t bytes = std::size_t(p.bits / 8);
+  if (tw == 0 || th == 0 || tw > (1u << 16) || th > (1u << 16))
+    throw VolumeError(where + " has tiles of " + std::to_string(tw) + " × " + std::to_string(th) +
+                      " pixels; expected 1 to 65536 a side");
+  const std::size_t tilesAcross = (std::size_t(p.size.x) + tw - 1) / tw;
+  const std::size_t bandWidth = tilesAcross * tw;  // whole tiles: the last may overhang the page
+  if (bandWidth * th * bytes > kMaxTileBandBytes)
+    throw VolumeError(where + " has tiles of " + std::to_string(tw) + " × " + std::to_string(th) +
+                      " pixels: a row of them is more than " + std::to_string(kMaxTileBandBytes >> 20) +
+                      " MiB; save the slices in strips or smaller tiles");
+  const std::size_t tileBytes = std::size_t(tw) * th * bytes;
+  if (TIFFTileSize(t) < tmsize_t(tileBytes)) throw VolumeError(where + ": its tiles are smaller than their size says");
+  std::vector<unsigned char> tile(std::size_t(TIFFTileSize(t))), band(bandWidth * th * bytes);
+  std::vector<float> values(std::size_t(p.size.x));
+  for (std::uint32_t y0 = 0; y0 < std::uint32_t(p.size.y); y0 += th) {
+    for (std::size_t i = 0; i < tilesAcross; ++i) {
+      tiffMessage.clear();
+      const std::uint32_t x0 = std::uint32_t(i * tw);
+      if (TIFFReadTile(t, tile.data(), x0, y0, 0, 0) < 0)
+        throw VolumeError(where + ": the tile at pixel (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                          ") cannot be read (" + tiffMessage + "); is the file cut short?");
+      for (std::uint32_t r = 0; r < th; ++r)
+        std::memcpy(&band[(std::size_t(r) * bandWidth + x0) * bytes], &tile[std::size_t(r) * tw * bytes], tw * bytes);
+    }
+    for (std::uint32_t r = 0; r < th && y0 + r < std::uint32_t(p.size.y); ++r) {
+      rowToDensities(&band[std::size_t(r) * bandWidth * bytes], p, values.data());
+      builder.append(values.data(), values.size());
+    }
+  }
+}
+
 // One page's rows into the builder, as densities.
 void readPage(TIFF* t, const Page& p, VolumeBuilder& builder, const std::string& where) {
+  if (TIFFIsTiled(t)) return readTiledPage(t, p, builder, where);
   std::vector<unsigned char> row(std::size_t(TIFFScanlineSize(t)));
   if (row.size() < std::size_t(p.size.x) * std::size_t(p.bits / 8))
     throw VolumeError(where + ": its rows are shorter than its width says");
-  const double white = p.bits == 8 ? 255.0 : 65535.0;
   std::vector<float> values(std::size_t(p.size.x));
   for (int y = 0; y < p.size.y; ++y) {
     tiffMessage.clear();
     if (TIFFReadScanline(t, row.data(), std::uint32_t(y), 0) < 0)
       throw VolumeError(where + ": row " + std::to_string(y) + " cannot be read (" + tiffMessage + "); is the file cut short?");
-    for (int x = 0; x < p.size.x; ++x) {
-      double v;
-      if (p.bits == 8) {
-        v = p.isSigned ? double(std::int8_t(row[std::size_t(x)])) : double(row[std::size_t(x)]);
-      } else if (p.bits == 16) {
-        std::uint16_t u;
-        std::memcpy(&u, &row[std::size_t(x) * 2], 2);  // libtiff gives host order
-        v = p.isSigned ? double(std::int16_t(u)) : double(u);
-      } else {
-        float f;
-        std::memcpy(&f, &row[std::size_t(x) * 4], 4);
-        v = double(f);
-      }
-      if (p.minIsWhite && !p.isFloat) v = white - v;
-      values[std::size_t(x)] = float(v);
-    }
+    rowToDensities(row.data(), p, values.data());
     builder.append(values.data(), values.size());
   }
 }
@@ -244,6 +292,24 @@ bool isTiff(const fs::path& p) {
 
 bool isPng(const fs::path& p) { return asciiLower(p.extension().string()) == ".png"; }
 
+bool isBmp(const fs::path& p) { return asciiLower(p.extension().string()) == ".bmp"; }
+
+enum class SliceKind { tiff, png, bmp };
+
+SliceKind kindOf(const fs::path& p) { return isPng(p) ? SliceKind::png : isBmp(p) ? SliceKind::bmp : SliceKind::tiff; }
+
+const char* kindName(SliceKind k) { return k == SliceKind::png ? "PNG" : k == SliceKind::bmp ? "BMP" : "TIFF"; }
+
+// One BMP slice's rows into the builder (8-bit grey).
+void readBmp(const medical::BmpSlice& slice, VolumeBuilder& builder) {
+  std::vector<float> values(std::size_t(slice.size().x));
+  for (int y = 0; y < slice.size().y; ++y) {
+    const unsigned char* row = slice.row(y);
+    for (std::size_t x = 0; x < values.size(); ++x) values[x] = float(row[x]);
+    builder.append(values.data(), values.size());
+  }
+}
+
 // "Image Pixel Size (um)=12.5" in a .log beside the slices (SkyScan's reconstruction log).
 std::optional<double> pixelSizeFromLog(const fs::path& folder) {
   std::error_code ec;
@@ -295,7 +361,7 @@ std::vector<fs::path> sliceFiles(const fs::path& folderOrPattern) {
   }
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(folderOrPattern, ec))
-    if (e.is_regular_file(ec) && (isTiff(e.path()) || isPng(e.path()))) {
+    if (e.is_regular_file(ec) && (isTiff(e.path()) || isPng(e.path()) || isBmp(e.path()))) {
       if (files.size() == kMaxSlices)
         throw VolumeError(text + ": more than " + std::to_string(kMaxSlices) + " slices; MillSim reads at most that many");
       files.push_back(e.path());
@@ -303,12 +369,14 @@ std::vector<fs::path> sliceFiles(const fs::path& folderOrPattern) {
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     return naturalLess(a.filename().string(), b.filename().string());
   });
-  if (files.empty()) throw VolumeError(text + ": no .tif, .tiff or .png slices in the folder");
+  if (files.empty()) throw VolumeError(text + ": no .tif, .tiff, .png or .bmp slices in the folder");
   // One kind a stack: a TIFF stack with a PNG preview beside it is not a stack of both.
   for (const fs::path& f : files)
-    if (isPng(f) != isPng(files[0]))
-      throw VolumeError(text + " holds both TIFF and PNG slices (" + files[0].filename().string() + ", " +
-                        f.filename().string() + "); a stack is one kind: move the others out");
+    if (kindOf(f) != kindOf(files[0]))
+      throw VolumeError(text + " holds both " + kindName(std::min(kindOf(files[0]), kindOf(f))) + " and " +
+                        kindName(std::max(kindOf(files[0]), kindOf(f))) + " slices (" +
+                        files[0].filename().string() + ", " + f.filename().string() +
+                        "); a stack is one kind: move the others out");
   return files;
 }
 
@@ -319,11 +387,14 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
   const bool onePerFile = !(fs::is_regular_file(source) && isTiff(source));
   const std::vector<fs::path> files = onePerFile ? sliceFiles(source) : std::vector<fs::path>{source};
   const std::string name = source.string();
-  const bool png = isPng(files[0]);
+  const SliceKind kind = kindOf(files[0]);
+  const bool png = kind == SliceKind::png, bmp = kind == SliceKind::bmp;
 
   // The shape: every page must match the first.
-  TiffFile first = png ? nullptr : openTiff(files[0]);
-  const Page shape = png ? PngSlice(files[0]).page() : pageOf(first.get(), files[0].string());
+  TiffFile first = png || bmp ? nullptr : openTiff(files[0]);
+  const Page shape = png   ? PngSlice(files[0]).page()
+                     : bmp ? Page{medical::BmpSlice(files[0]).size(), 8, false, false, false, 0.0}
+                           : pageOf(first.get(), files[0].string());
   std::size_t slices = files.size();
   if (!onePerFile) {
     slices = 0;
@@ -343,8 +414,9 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
     if (const auto mm = pixelSizeFromLog(folder.empty() ? fs::path(".") : folder)) voxelSize = glm::dvec3(*mm * 1e-3);
     else if (shape.pixelMm > 0.0) voxelSize = glm::dvec3(shape.pixelMm * 1e-3);
     else
-      throw VolumeError(name + ": no pixel size in the " + (png ? "PNG pHYs chunk" : "TIFF resolution tags") +
-                        " or in a SkyScan .log beside the slices; give the VolumeObject's voxelSize");
+      throw VolumeError(name + ": no pixel size in " +
+                        (png ? "the PNG pHYs chunk or in " : bmp ? "" : "the TIFF resolution tags or in ") +
+                        "a SkyScan .log beside the slices; give the VolumeObject's voxelSize");
   }
 
   VolumeBuilder builder(glm::ivec3(shape.size.x, shape.size.y, int(slices)), voxelSize, airValue, name);
@@ -353,7 +425,13 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
       throw VolumeError(f.string() + " is " + describe(p) + "; the first slice, " + files[0].filename().string() +
                         ", is " + describe(shape));
   };
-  if (png) {
+  if (bmp) {
+    for (const fs::path& f : files) {
+      const medical::BmpSlice slice(f);
+      mismatch(f, Page{slice.size(), 8, false, false, false, 0.0});
+      readBmp(slice, builder);
+    }
+  } else if (png) {
     for (const fs::path& f : files) {
       PngSlice slice(f);
       const Page p = slice.page();

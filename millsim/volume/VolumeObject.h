@@ -26,7 +26,7 @@ public:
 
   MFString url{this, "url", Access::InitializeOnly, {"phantom:tooth"},
                "Volume sources, first loadable wins: a .vdb, .nrrd/.nhdr, .mha/.mhd, .vti or .dcm file, a folder "
-               "of DICOM slices, a micro-CT stack of greyscale TIFF or PNG slices (a folder, a pattern such as "
+               "of DICOM slices, a micro-CT stack of greyscale TIFF, PNG or BMP slices (a folder, a pattern such as "
                "slices/img_%04d.tif, or one multi-page .tif; the pixel size from voxelSize, a SkyScan .log, the "
                "TIFF tags or the PNG pHYs chunk), phantom:tooth[?size=X,Y,Z&voxel=M&socket=0|1] (in an X3D file each & is written "
                "&amp;), or a closed surface mesh (.stl, .obj, .ply: its parts, an OBJ's groups or an STL's solids, "

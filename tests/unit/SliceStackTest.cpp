@@ -1,6 +1,6 @@
 // Micro-CT slice stacks (readSliceStack; issue 45, part 3): 16-bit TIFF slices
-// in a folder, a printf pattern or one multi-page file read voxel for voxel as
-// the NRRD of the same data; the pixel size from the resolution tags or a
+// in a folder, a printf pattern or one multi-page file, PNG and 8/24-bit BMP
+// slices read voxel for voxel as the NRRD of the same data (TIFF in strips or tiles); the pixel size from the resolution tags or a
 // SkyScan .log; slices sorted naturally; mismatched, truncated, colour and
 // unsized stacks refused naming the file. The slices are written here with
 // libtiff's writing API.
@@ -173,6 +173,141 @@ TEST(SliceStack, APatternAndAMultiPageTiffReadTheSame) {
   const LoadedVolume loaded = loadVolume((dir.path() / "stack.tif").string(), {}, kAir);
   EXPECT_EQ(loaded.format, "slices");
   expectSameVoxels(loaded.volume, nrrd);
+}
+
+// One tiled 16-bit page: 16 × 16 tiles, so a 20-pixel row spans two tiles and
+// the second overhangs the page (libtiff pads it; the reader must not keep the padding).
+fs::path writeTiledSlice(const fs::path& file, int z, double pixelMm) {
+  TIFF* t = TIFFOpen(file.c_str(), "w");
+  EXPECT_NE(t, nullptr);
+  TIFFSetField(t, TIFFTAG_IMAGEWIDTH, kW);
+  TIFFSetField(t, TIFFTAG_IMAGELENGTH, kH);
+  TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 16);
+  TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
+  TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  TIFFSetField(t, TIFFTAG_TILEWIDTH, 16);
+  TIFFSetField(t, TIFFTAG_TILELENGTH, 16);
+  TIFFSetField(t, TIFFTAG_RESOLUTIONUNIT, RESUNIT_CENTIMETER);
+  TIFFSetField(t, TIFFTAG_XRESOLUTION, float(10.0 / pixelMm));
+  TIFFSetField(t, TIFFTAG_YRESOLUTION, float(10.0 / pixelMm));
+  std::vector<std::uint16_t> tile(16 * 16);
+  for (int x0 = 0; x0 < kW; x0 += 16) {
+    for (int r = 0; r < 16; ++r)
+      for (int c = 0; c < 16; ++c)
+        tile[std::size_t(r * 16 + c)] = x0 + c < kW && r < kH ? value(x0 + c, r, z) : std::uint16_t(12345);
+    EXPECT_GT(TIFFWriteTile(t, tile.data(), std::uint32_t(x0), 0, 0, 0), 0);
+  }
+  TIFFClose(t);
+  return file;
+}
+
+TEST(SliceStack, TiledTiffSlicesReadAsTheNrrdOfTheSameData) {
+  ScratchDir dir;
+  fs::create_directories(dir.path() / "tiles");
+  for (int z = 0; z < kSlices; ++z) writeTiledSlice(dir.path() / "tiles" / ("t" + std::to_string(z) + ".tif"), z, 0.05);
+  const VoxelVolume v = readSliceStack(dir.path() / "tiles", kAir);
+  EXPECT_NEAR(v.voxelSize().x, 50e-6, 1e-12);
+  expectSameVoxels(v, throughNrrd(dir.path()));
+
+  fs::resize_file(dir.path() / "tiles" / "t3.tif", fs::file_size(dir.path() / "tiles" / "t3.tif") / 2);
+  const std::string cut = errorOf(dir.path() / "tiles");
+  EXPECT_NE(cut.find("t3.tif"), std::string::npos) << cut;
+  EXPECT_EQ(cut.find("(no error)"), std::string::npos);
+}
+
+// An 8-bit grey value for slice z, pixel (x, y): BMP slices are 8-bit.
+std::uint8_t grey(int x, int y, int z) { return std::uint8_t((x * 37 + y * 11 + z * 101) % 256); }
+
+// A BMP slice written byte by byte (the format's own layout, not a library's
+// writer): 8-bit with a grey palette, bottom-up as most tools write it, or
+// 24-bit top-down (negative height); `colourAt` makes one pixel not grey.
+fs::path writeBmpSlice(const fs::path& file, int z, int bits, bool topDown, bool colourAt = false) {
+  const int bytes = bits / 8, stride = (kW * bytes + 3) / 4 * 4, paletteBytes = bits == 8 ? 256 * 4 : 0;
+  const std::uint32_t offset = 14 + 40 + std::uint32_t(paletteBytes), size = offset + std::uint32_t(stride * kH);
+  std::vector<unsigned char> b;
+  auto put = [&](std::uint32_t v, int n) {
+    for (int i = 0; i < n; ++i) b.push_back(static_cast<unsigned char>(v >> (8 * i)));
+  };
+  b.push_back('B'), b.push_back('M');
+  put(size, 4), put(0, 4), put(offset, 4);
+  put(40, 4), put(kW, 4), put(std::uint32_t(topDown ? -kH : kH), 4), put(1, 2), put(std::uint32_t(bits), 2);
+  put(0, 4), put(std::uint32_t(stride * kH), 4), put(2835, 4), put(2835, 4), put(bits == 8 ? 256 : 0, 4), put(0, 4);
+  for (int i = 0; i < paletteBytes / 4; ++i) put(std::uint32_t(i) * 0x010101u, 4);
+  for (int r = 0; r < kH; ++r) {
+    const int y = topDown ? r : kH - 1 - r;
+    for (int x = 0; x < kW; ++x) {
+      const std::uint8_t g = grey(x, y, z);
+      if (bits == 8) b.push_back(g);
+      else b.push_back(g), b.push_back(colourAt && x == 3 && y == 5 ? std::uint8_t(g ^ 1) : g), b.push_back(g);
+    }
+    for (int pad = kW * bytes; pad < stride; ++pad) b.push_back(0);
+  }
+  std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+  return file;
+}
+
+TEST(SliceStack, EightAndTwentyFourBitBmpSlicesAreTheNrrdOfTheSameData) {
+  ScratchDir dir;
+  std::vector<float> values;
+  for (int z = 0; z < kSlices; ++z)
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) values.push_back(float(grey(x, y, z)));
+  writeNrrd(VoxelVolume::fromDense(values.data(), {kW, kH, kSlices}, glm::dvec3(20e-6), kAir), dir.path() / "grey.nrrd", false);
+  const VoxelVolume nrrd = readNrrd(dir.path() / "grey.nrrd", kAir);
+
+  fs::create_directories(dir.path() / "bmp8");
+  fs::create_directories(dir.path() / "bmp24");
+  for (int z = 0; z < kSlices; ++z) {
+    writeBmpSlice(dir.path() / "bmp8" / ("rec" + std::to_string(z) + ".bmp"), z, 8, false);
+    writeBmpSlice(dir.path() / "bmp24" / ("rec" + std::to_string(z) + ".bmp"), z, 24, true);
+  }
+  // A BMP's pixels per metre (72 dpi here, as tools write whatever the scan) is not a pixel size.
+  EXPECT_NE(errorOf(dir.path() / "bmp8").find("no pixel size in a SkyScan .log beside the slices"), std::string::npos)
+      << errorOf(dir.path() / "bmp8");
+  dir.write("bmp8/rec.log", "[Reconstruction]\nImage Pixel Size (um)=20.0\n");
+  const VoxelVolume v = readSliceStack(dir.path() / "bmp8", kAir);
+  EXPECT_NEAR(v.voxelSize().x, 20e-6, 1e-12);
+  expectSameVoxels(v, nrrd);
+  expectSameVoxels(readSliceStack(dir.path() / "bmp24" / "rec%d.bmp", kAir, glm::dvec3(20e-6)), nrrd);
+  const LoadedVolume loaded = loadVolume((dir.path() / "bmp8").string(), {}, kAir);
+  EXPECT_EQ(loaded.format, "slices");
+}
+
+TEST(SliceStack, BadBmpSlicesAreRefusedNamingTheFile) {
+  ScratchDir dir;
+  const glm::dvec3 h(20e-6);
+  fs::create_directories(dir.path() / "colour");
+  writeBmpSlice(dir.path() / "colour" / "c0.bmp", 0, 24, false, true);
+  EXPECT_NE(errorOf(dir.path() / "colour", h).find("c0.bmp is not greyscale: pixel (3, 5) is ("), std::string::npos)
+      << errorOf(dir.path() / "colour", h);
+
+  fs::create_directories(dir.path() / "cut");
+  const fs::path cut = writeBmpSlice(dir.path() / "cut" / "c0.bmp", 0, 8, false);
+  fs::resize_file(cut, fs::file_size(cut) - 100);
+  EXPECT_NE(errorOf(dir.path() / "cut", h).find("c0.bmp: not a BMP SDL2 can read"), std::string::npos)
+      << errorOf(dir.path() / "cut", h);
+
+  // A header of 60000 × 60000 pixels is refused before anything is allocated for it.
+  fs::create_directories(dir.path() / "huge");
+  std::string huge(54, '\0');
+  huge[0] = 'B', huge[1] = 'M', huge[14] = 40, huge[18] = char(0x60), huge[19] = char(0xea), huge[22] = char(0x60),
+  huge[23] = char(0xea), huge[26] = 1, huge[28] = 8;
+  dir.write("huge/h0.bmp", huge);
+  EXPECT_NE(errorOf(dir.path() / "huge", h).find("h0.bmp is 60000 × 60000 pixels; a BMP slice is read whole"),
+            std::string::npos)
+      << errorOf(dir.path() / "huge", h);
+  dir.write("huge/h0.bmp", "BM");
+  EXPECT_NE(errorOf(dir.path() / "huge", h).find("h0.bmp: its BMP header is cut short (2 bytes)"), std::string::npos)
+      << errorOf(dir.path() / "huge", h);
+  dir.write("huge/h0.bmp", "not a bitmap at all");
+  EXPECT_NE(errorOf(dir.path() / "huge", h).find("h0.bmp: not a BMP file"), std::string::npos) << errorOf(dir.path() / "huge", h);
+
+  fs::create_directories(dir.path() / "mixed");
+  writeBmpSlice(dir.path() / "mixed" / "m0.bmp", 0, 8, false);
+  writeSlice(dir.path() / "mixed" / "m1.tif", 1, 0.05);
+  EXPECT_NE(errorOf(dir.path() / "mixed", h).find("holds both TIFF and BMP slices"), std::string::npos)
+      << errorOf(dir.path() / "mixed", h);
 }
 
 TEST(SliceStack, ASkyScanLogGivesThePixelSize) {
