@@ -70,6 +70,29 @@ const PeakFit kPeakFit;
 
 }  // namespace
 
+void BurrField::bind(const HapticScene& scene) {
+  cached_ = normalCached_ = false;
+  scene_ = &scene;
+  const double h = scene.voxelSize();
+  if (h == fineVoxel_) return;
+  fineVoxel_ = h;
+  fine_.clear();
+  // The widest gap the directions may leave: where the sphere sags kHiddenVoxels.
+  const double sag = kHiddenVoxels * h / radius_;
+  const double gap = sag < 2.0 ? std::acos(1.0 - sag) : std::numbers::pi;
+  constexpr double kCubeGap = 0.4804;  // the 26 directions' widest gap (27.5°)
+  if (!(gap < kCubeGap)) return;
+  // A Fibonacci lattice of n points leaves gaps of at most 2.75/√n rad (measured
+  // for n from 50 to 800), capped where a burr of 25 voxels' radius would be.
+  const std::size_t n = std::min<std::size_t>(std::size_t(std::ceil(std::pow(2.75 / gap, 2))), 2000);
+  fine_.reserve(n);
+  const double turn = std::numbers::pi * (3.0 - std::sqrt(5.0));  // the golden angle
+  for (std::size_t i = 0; i < n; ++i) {
+    const double y = 1.0 - 2.0 * (double(i) + 0.5) / double(n), ring = std::sqrt(std::max(0.0, 1.0 - y * y));
+    fine_.push_back({ring * std::cos(turn * double(i)), y, ring * std::sin(turn * double(i))});
+  }
+}
+
 double BurrField::voxelSize() const { return scene_->voxelSize(); }
 
 bool BurrField::maySaddle(const glm::dvec3& probe) const { return scene_->field(probe) > 0.0; }
@@ -83,6 +106,23 @@ void BurrField::evaluate(const glm::dvec3& c) const {
   for (const glm::dvec3& d : kDirections) {
     const double s = scene.field(c + radius_ * d);
     if (s > best) best = s, u = d;
+  }
+  // No surface among them (not even within a voxel, by the last contact's
+  // slope) but material near: it may lie between them (BurrField, above).
+  // Not again within a quarter voxel of where the last such search found
+  // none: milling only removes material, so the sphere there is still clear
+  // but for the quarter voxel it moved (a burr held near material, such as
+  // the lean of the §8.2 procedure, otherwise searched every evaluation).
+  const double h = scene.voxelSize();
+  if (!fine_.empty() && best < -risePerVoxel_ &&
+      !(clearScene_ == &scene && glm::length(c - clearAt_) <= 0.25 * h) && scene.mayHaveMaterialNear(c, radius_)) {
+    for (const glm::dvec3& d : fine_) {
+      const double s = scene.field(c + radius_ * d);
+      if (s > best) best = s, u = d;
+    }
+    const bool clear = best < -risePerVoxel_;
+    clearScene_ = clear ? &scene : nullptr;
+    clearAt_ = c;
   }
   // Three steps towards the deepest point of the sphere, each fitting a
   // parabola to s at ±a along two tangent directions (a = 0.2, 0.05, 0.0125 rad).
@@ -110,9 +150,10 @@ void BurrField::evaluate(const glm::dvec3& c) const {
   }
   // ∇g is ∇s at the maximiser (the envelope theorem), which is parallel to u
   // there; its size is the derivative of s along u (a quarter voxel each way).
-  const double e = 0.25 * scene.voxelSize();
+  const double e = 0.25 * h;
   const double along = (scene.field(c + (radius_ + e) * u) - scene.field(c + (radius_ - e) * u)) / (2.0 * e);
   const glm::dvec3 g = along > 0.0 && std::isfinite(along) ? along * u : glm::dvec3(0.0);
+  if (along > 0.0 && std::isfinite(along)) risePerVoxel_ = along * h;
   at_ = c;
   value_ = best;
   gradient_ = g;
