@@ -83,7 +83,7 @@ void BurrField::bind(const HapticScene& scene) {
   constexpr double kCubeGap = 0.4804;  // the 26 directions' widest gap (27.5°)
   if (!(gap < kCubeGap)) return;
   // A Fibonacci lattice of n points leaves gaps of at most 2.75/√n rad (measured
-  // for n from 50 to 800), capped where a burr of 25 voxels' radius would be.
+  // for n from 50 to 800): about 5 r/h points, capped at a burr 400 voxels in radius.
   const std::size_t n = std::min<std::size_t>(std::size_t(std::ceil(std::pow(2.75 / gap, 2))), 2000);
   fine_.reserve(n);
   const double turn = std::numbers::pi * (3.0 - std::sqrt(5.0));  // the golden angle

@@ -2,8 +2,8 @@
 // One BMP slice of a micro-CT stack (SkyScan's reconstruction writes 8-bit
 // BMPs by default), decoded whole by SDL2's BMP reader — palettes, RLE, top-down
 // rows and the V4/V5 headers other tools write — after MillSim has read the
-// header's size itself, so a hostile header cannot make it allocate more than
-// a slice of 65536 pixels a side. Internal to libmillsim_medical (SliceStack.cpp).
+// header's size itself, so a hostile header cannot make it allocate for more
+// than 2^28 pixels. Internal to libmillsim_medical (SliceStack.cpp).
 #include <filesystem>
 #include <string>
 #include <vector>
