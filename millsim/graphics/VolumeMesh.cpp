@@ -4,6 +4,7 @@
 
 #include <glm/common.hpp>
 
+#include "millsim/graphics/CoarseVolume.h"
 #include "millsim/volume/TissueMap.h"
 #include "millsim/volume/VolumeSampler.h"
 
@@ -20,7 +21,7 @@ glm::vec3 densityColour(float d, float iso) {
 VolumeMesh::VolumeMesh(const VoxelVolume& voxels, float isoValue, const TissueMap* tissues)
     : voxels_(voxels), tissues_(tissues), iso_(isoValue) {
   levels_[0].mesher = std::make_unique<IsoSurfaceMesher>(voxels, isoValue);
-  const glm::ivec3 fine = voxels.dims(), coarse = (fine + 1) / 2;
+  const glm::ivec3 fine = voxels.dims(), coarse = coarseDims(fine, 2);
   levels_[1].own = std::make_unique<VoxelVolume>(VoxelVolume::Grid::create(voxels.airValue()), coarse,
                                                  2.0 * voxels.voxelSize(), voxels.airValue());
   levels_[1].mesher = std::make_unique<IsoSurfaceMesher>(*levels_[1].own, isoValue);
@@ -33,31 +34,9 @@ double VolumeMesh::voxelSize() const {
   return std::min({h.x, h.y, h.z});
 }
 
-void VolumeMesh::average(glm::ivec3 from, glm::ivec3 to) {
-  const glm::ivec3 fine = voxels_.dims(), coarse = levels_[1].own->dims();
-  from = glm::max(from, glm::ivec3(0));
-  to = glm::min(to, coarse - 1);
-  auto in = voxels_.grid().getConstAccessor();
-  auto out = levels_[1].own->grid().getAccessor();
-  const float air = voxels_.airValue();
-  for (int k = from.z; k <= to.z; ++k)
-    for (int j = from.y; j <= to.y; ++j)
-      for (int i = from.x; i <= to.x; ++i) {
-        float sum = 0.f;
-        for (int c = 0; c < 8; ++c) {
-          const glm::ivec3 f = glm::min(2 * glm::ivec3(i, j, k) + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1), fine - 1);
-          sum += in.getValue(openvdb::Coord(f.x, f.y, f.z));
-        }
-        const float v = 0.125f * sum;
-        if (v != air)
-          out.setValue(openvdb::Coord(i, j, k), v);
-        else
-          out.setValueOff(openvdb::Coord(i, j, k), air);
-      }
-}
-
 void VolumeMesh::build() {
-  average(glm::ivec3(0), levels_[1].own->dims() - 1);
+  levels_[1].own->grid().clear();
+  averageAll(voxels_, *levels_[1].own, 2);
   for (int l = 0; l < 2; ++l) {
     Level& level = levels_[l];
     level.mesher->buildAll();
@@ -71,7 +50,7 @@ void VolumeMesh::update(const std::vector<BlockOrigin>& blocks) {
   // Level 1: re-average what the changed blocks cover, and re-mesh its blocks there.
   std::vector<BlockOrigin> coarseBlocks;
   for (const BlockOrigin& o : blocks) {
-    average(o / 2, o / 2 + glm::ivec3(DirtyBlocks::kSize / 2 - 1));
+    averageBlocks(voxels_, *levels_[1].own, 2, o / 2, o / 2 + glm::ivec3(DirtyBlocks::kSize / 2 - 1));
     const BlockOrigin c = (o / 2) / DirtyBlocks::kSize * DirtyBlocks::kSize;
     if (std::find(coarseBlocks.begin(), coarseBlocks.end(), c) == coarseBlocks.end()) coarseBlocks.push_back(c);
   }

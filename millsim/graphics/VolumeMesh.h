@@ -58,8 +58,6 @@ private:
   };
   void upload(Level& level, const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk, const glm::dvec3& shift);
   glm::vec3 colourAt(const VolumeSampler& sampler, const glm::dvec3& index, float isoValue) const;
-  // Averages the voxels of coarse indices [from, to] (clamped) from voxels_ into level 1.
-  void average(glm::ivec3 from, glm::ivec3 to);
 
   const VoxelVolume& voxels_;
   const TissueMap* tissues_;
