@@ -67,7 +67,6 @@ SceneDrawer::SceneDrawer(SceneView scene) : scene_(std::move(scene)), view_(scen
   box_->upload(v, idx);
   for (const DrawVolume& dv : scene_.volumes) {
     meshes_.push_back(std::make_unique<VolumeMesh>(*dv.voxels, float(dv.iso), dv.tissues));
-    meshes_.back()->build();
   }
 }
 
@@ -79,7 +78,6 @@ SceneDrawer::~SceneDrawer() {
 std::size_t SceneDrawer::addVolume(const VoxelVolume& voxels, const glm::dmat4& localToWorld, double iso) {
   scene_.volumes.push_back({&voxels, localToWorld, iso, {}, {}});
   meshes_.push_back(std::make_unique<VolumeMesh>(voxels, float(iso)));
-  meshes_.back()->build();
   return meshes_.size() - 1;
 }
 
@@ -169,6 +167,7 @@ void SceneDrawer::draw(int width, int height, const std::vector<ToolView>& tools
     program_->setObject(scene_.volumes[i].localToWorld, kTissue, nullptr, true, planesFor(scene_.volumes[i].cuts, true));
     program_->setLights(scene_.volumes[i].lights);
     const int level = levelOfDetail(i, height);
+    meshes_[i]->prepare(level);
     meshes_[i]->draw(level);
     if (drawnLevels_.size() < meshes_.size()) drawnLevels_.resize(meshes_.size(), 0);
     drawnLevels_[i] = level;
@@ -234,7 +233,10 @@ int SceneDrawer::levelOfDetail(std::size_t i, int height) const {
   const double distance = glm::length(centre - camera_.eye());
   const double scale = glm::length(glm::dvec3(m[0]));
   const double pixelsPerMetre = 0.5 * double(height) * camera_.projection[1][1] / std::max(distance, 1e-9);
-  return meshes_[i]->voxelSize() * scale * pixelsPerMetre < kCoarseBelowPixels ? 1 : 0;
+  const double pixels = meshes_[i]->voxelSize() * scale * pixelsPerMetre;
+  int level = 0;
+  while (level + 1 < VolumeMesh::kLevels && pixels * double(1 << level) < kCoarseBelowPixels) ++level;
+  return level;
 }
 
 void SceneDrawer::drawShape(const DrawShape& s) {
@@ -368,7 +370,9 @@ DrawStats SceneDrawer::stats() const {
   DrawStats s;
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
     const auto& m = meshes_[i];
-    s.triangles += m->triangles(i < drawnLevels_.size() ? drawnLevels_[i] : 0);
+    const int level = i < drawnLevels_.size() ? drawnLevels_[i] : 0;
+    s.triangles += m->triangles(level);
+    s.level = std::max(s.level, level);
     s.chunks += m->chunks();
     s.chunkUploads += m->uploads();
   }

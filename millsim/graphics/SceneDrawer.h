@@ -54,8 +54,9 @@ struct ToolView {
 };
 
 struct DrawStats {
-  std::size_t triangles = 0;     // of all volume meshes, at the level each was last drawn (level 0 before a draw)
-  std::size_t chunks = 0;        // chunk meshes on the GPU
+  std::size_t triangles = 0;     // of all volume meshes, at the level each was last drawn (none before a draw)
+  int level = 0;                 // the coarsest level of detail a volume was last drawn at
+  std::size_t chunks = 0;        // chunk meshes on the GPU, every level made
   std::size_t chunkUploads = 0;  // since construction (an incremental update adds only the chunks it touched)
   std::size_t caps = 0;          // cut caps drawn in the latest draw()
   std::uint64_t capTexels = 0;   // section texels sampled since construction (a moved plane samples its whole section)
@@ -63,7 +64,7 @@ struct DrawStats {
 
 class SceneDrawer {
 public:
-  // Meshes every volume of `scene` (≈60 ms for the tooth) with the current context.
+  // Takes every volume of `scene`; a volume is meshed at the level of detail it is first drawn at.
   explicit SceneDrawer(SceneView scene);
   ~SceneDrawer();
   SceneDrawer(const SceneDrawer&) = delete;
@@ -117,9 +118,10 @@ private:
   VolumeMesh& mesh(std::size_t index);
   void drawTool(const ToolView& t);
   void drawShape(const DrawShape& s);
-  // VolumeMesh's level of detail for volume i in an image `height` pixels high.
+  // VolumeMesh's level of detail for volume i in an image `height` pixels high:
+  // the finest whose voxel covers kCoarseBelowPixels.
   int levelOfDetail(std::size_t i, int height) const;
-  // Where a voxel covers fewer pixels than this, the 2×2×2-averaged mesh is drawn.
+  // Where a voxel covers fewer pixels than this, a coarser level is drawn.
   static constexpr double kCoarseBelowPixels = 1.5;
   // The GPU copy of a mesh shape or a Text's glyph quads, made on first use.
   GlMesh& meshFor(const std::shared_ptr<const TriangleMesh>& mesh);

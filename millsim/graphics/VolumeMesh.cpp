@@ -6,6 +6,7 @@
 
 #include "millsim/graphics/CoarseVolume.h"
 #include "millsim/volume/TissueMap.h"
+#include "millsim/volume/VoxelSizeRange.h"
 #include "millsim/volume/VolumeSampler.h"
 
 namespace millsim {
@@ -21,12 +22,22 @@ glm::vec3 densityColour(float d, float iso) {
 VolumeMesh::VolumeMesh(const VoxelVolume& voxels, float isoValue, const TissueMap* tissues)
     : voxels_(voxels), tissues_(tissues), iso_(isoValue) {
   levels_[0].mesher = std::make_unique<IsoSurfaceMesher>(voxels, isoValue);
-  const glm::ivec3 fine = voxels.dims(), coarse = coarseDims(fine, 2);
-  levels_[1].own = std::make_unique<VoxelVolume>(VoxelVolume::Grid::create(voxels.airValue()), coarse,
-                                                 2.0 * voxels.voxelSize(), voxels.airValue());
-  levels_[1].mesher = std::make_unique<IsoSurfaceMesher>(*levels_[1].own, isoValue);
-  // Coarse voxel i averages fine voxels 2i and 2i + 1, centred at fine index 2i + ½.
-  coarseOffset_ = (glm::dvec3(coarse) - 0.5 * glm::dvec3(fine)) * voxels.voxelSize();
+  const glm::ivec3 fine = voxels.dims();
+  const glm::dvec3 h = voxels.voxelSize();
+  // As many levels as a volume's voxels may grow to (VoxelSizeRange.h): a
+  // clinical CT of 2 mm voxels has levels 0 to 2.
+  while (levelCount_ < kLevels && double(1 << levelCount_) * std::max({h.x, h.y, h.z}) <= kMaxVoxelSize) ++levelCount_;
+  levelCount_ = std::max(levelCount_, 1);
+  for (int l = 1; l < levelCount_; ++l) {
+    Level& level = levels_[l];
+    level.factor = 1 << l;
+    const glm::ivec3 coarse = coarseDims(fine, level.factor);
+    level.own = std::make_unique<VoxelVolume>(VoxelVolume::Grid::create(voxels.airValue()), coarse,
+                                              double(level.factor) * voxels.voxelSize(), voxels.airValue());
+    level.mesher = std::make_unique<IsoSurfaceMesher>(*level.own, isoValue);
+    // Coarse voxel i averages fine voxels f·i … f·i + f − 1, centred at fine index f·i + (f − 1)/2.
+    level.offset = 0.5 * (double(level.factor) * glm::dvec3(coarse) - glm::dvec3(fine)) * voxels.voxelSize();
+  }
 }
 
 double VolumeMesh::voxelSize() const {
@@ -34,31 +45,45 @@ double VolumeMesh::voxelSize() const {
   return std::min({h.x, h.y, h.z});
 }
 
-void VolumeMesh::build() {
-  levels_[1].own->grid().clear();
-  averageAll(voxels_, *levels_[1].own, 2);
-  for (int l = 0; l < 2; ++l) {
-    Level& level = levels_[l];
-    level.mesher->buildAll();
-    level.gpu.clear();
-    for (const auto& [key, chunk] : level.mesher->chunks()) upload(level, key, chunk, l ? coarseOffset_ : glm::dvec3(0.0));
+void VolumeMesh::make(Level& level) {
+  if (level.own) {
+    level.own->grid().clear();
+    averageAll(voxels_, *level.own, level.factor);
   }
+  level.mesher->buildAll();
+  level.gpu.clear();
+  for (const auto& [key, chunk] : level.mesher->chunks()) upload(level, key, chunk, level.offset);
+  level.made = true;
+}
+
+void VolumeMesh::build() {
+  for (Level& level : levels_)
+    if (level.made) make(level);
+}
+
+void VolumeMesh::prepare(int level) {
+  Level& l = levels_[std::clamp(level, 0, levelCount_ - 1)];
+  if (!l.made) make(l);
 }
 
 void VolumeMesh::update(const std::vector<BlockOrigin>& blocks) {
   if (blocks.empty()) return;
-  // Level 1: re-average what the changed blocks cover, and re-mesh its blocks there.
   std::vector<BlockOrigin> coarseBlocks;
-  for (const BlockOrigin& o : blocks) {
-    averageBlocks(voxels_, *levels_[1].own, 2, o / 2, o / 2 + glm::ivec3(DirtyBlocks::kSize / 2 - 1));
-    const BlockOrigin c = (o / 2) / DirtyBlocks::kSize * DirtyBlocks::kSize;
-    if (std::find(coarseBlocks.begin(), coarseBlocks.end(), c) == coarseBlocks.end()) coarseBlocks.push_back(c);
-  }
-  for (int l = 0; l < 2; ++l) {
-    Level& level = levels_[l];
-    for (const auto& key : level.mesher->update(l ? coarseBlocks : blocks)) {
+  for (Level& level : levels_) {
+    if (!level.made) continue;  // made afresh when it is first drawn
+    const int f = level.factor;
+    if (level.own) {
+      // Re-average what the changed blocks cover, and re-mesh its blocks there.
+      coarseBlocks.clear();
+      for (const BlockOrigin& o : blocks) {
+        averageBlocks(voxels_, *level.own, f, o / f, (o + glm::ivec3(DirtyBlocks::kSize - 1)) / f);
+        const BlockOrigin c = (o / f) / DirtyBlocks::kSize * DirtyBlocks::kSize;
+        if (std::find(coarseBlocks.begin(), coarseBlocks.end(), c) == coarseBlocks.end()) coarseBlocks.push_back(c);
+      }
+    }
+    for (const auto& key : level.mesher->update(level.own ? coarseBlocks : blocks)) {
       if (const MeshChunk* c = level.mesher->chunk(key))
-        upload(level, key, *c, l ? coarseOffset_ : glm::dvec3(0.0));
+        upload(level, key, *c, level.offset);
       else
         level.gpu.erase(key);  // the chunk no longer holds any surface
     }
@@ -66,7 +91,18 @@ void VolumeMesh::update(const std::vector<BlockOrigin>& blocks) {
 }
 
 void VolumeMesh::draw(int level) const {
-  for (const auto& [key, mesh] : levels_[level == 0 ? 0 : 1].gpu) mesh.draw();
+  for (const auto& [key, mesh] : levels_[std::clamp(level, 0, levelCount_ - 1)].gpu) mesh.draw();
+}
+
+std::size_t VolumeMesh::triangles(int level) const {
+  const Level& l = levels_[std::clamp(level, 0, levelCount_ - 1)];
+  return l.made ? l.mesher->triangleCount() : 0;
+}
+
+std::size_t VolumeMesh::chunks() const {
+  std::size_t n = 0;
+  for (const Level& level : levels_) n += level.gpu.size();
+  return n;
 }
 
 glm::vec3 VolumeMesh::colourAt(const VolumeSampler& sampler, const glm::dvec3& index, float iso) const {

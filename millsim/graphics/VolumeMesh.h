@@ -6,12 +6,17 @@
 // (its Tissue colour), or without tissues from the density there, so enamel,
 // dentin and whatever a cut exposes look different.
 //
-// Two levels of detail: level 0 meshes every voxel; level 1 meshes the
-// volume averaged over 2×2×2 voxels (a quarter of the triangles), kept in
-// step with milling the same way. The drawer picks level 1 where a voxel
-// covers less than about 1.5 pixels: marching cubes makes about two
-// triangles per surface voxel, so level 0's triangles would then be smaller
-// than a pixel, costing vertex work llvmpipe pays for and showing nothing.
+// Levels of detail: level l meshes the volume averaged over 2^l × 2^l × 2^l
+// voxels (CoarseVolume.h; level 0 is every voxel, each level a quarter of the
+// triangles of the one below), kept in step with milling the same way. The
+// drawer picks the finest level whose voxel covers at least about 1.5 pixels:
+// marching cubes makes about two triangles per surface voxel, so finer
+// triangles would be smaller than a pixel, costing vertex work llvmpipe pays
+// for and showing nothing. A level is meshed when it is first drawn and only
+// then kept in step: a tooth at 25 µm voxels seen whole is drawn at level 3
+// (its 0.2 mm voxels, what level 1 shows of a 0.1 mm tooth), and its every-
+// voxel mesh, eight seconds to make and most of each milling frame's
+// re-meshing, is made only if the view comes close enough to show it.
 // Internal to the graphics library; every call needs the renderer's GL
 // context current.
 #include <map>
@@ -40,32 +45,40 @@ public:
   // `tissues` (optional, never written) colours the surface by tissue.
   VolumeMesh(const VoxelVolume& voxels, float isoValue, const TissueMap* tissues = nullptr);
 
-  void build();                                             // everything afresh
+  static constexpr int kLevels = 4;  // every voxel, then averaged over 2³, 4³ and 8³
+
+  void build();                                             // the levels made so far, afresh
   void update(const std::vector<BlockOrigin>& blocks);   // after these 8³ blocks changed
-  // Level 0 (every voxel) or 1 (2×2×2 averaged); both in the volume's local frame.
+  // Makes `level` (clamped to the levels the volume has) if it has not been made.
+  void prepare(int level);
+  // A level prepare() made (clamped the same way), in the volume's local frame; nothing if it was not.
   void draw(int level = 0) const;
   double voxelSize() const;  // the smallest edge (m)
 
-  std::size_t triangles(int level = 0) const { return levels_[level].mesher->triangleCount(); }
-  std::size_t chunks() const { return levels_[0].gpu.size(); }
-  std::size_t uploads() const { return uploads_; }  // chunk uploads since construction (both levels)
+  std::size_t triangles(int level = 0) const;  // 0 for a level not made
+  std::size_t chunks() const;                  // of the levels made
+  std::size_t uploads() const { return uploads_; }  // chunk uploads since construction (every level)
 
 private:
   struct Level {
-    std::unique_ptr<VoxelVolume> own;  // level 1's averaged copy (level 0 meshes the caller's voxels)
+    int factor = 1;
+    std::unique_ptr<VoxelVolume> own;  // the averaged copy (level 0 meshes the caller's voxels)
     std::unique_ptr<IsoSurfaceMesher> mesher;
     std::map<IsoSurfaceMesher::ChunkKey, GlMesh, IsoSurfaceMesher::KeyLess> gpu;
+    // Where its coarse voxels' centres are in level 0's local frame, relative
+    // to its own centred frame (half a fine voxel per odd remainder).
+    glm::dvec3 offset{0.0};
+    bool made = false;
   };
+  void make(Level& level);
   void upload(Level& level, const IsoSurfaceMesher::ChunkKey& key, const MeshChunk& chunk, const glm::dvec3& shift);
   glm::vec3 colourAt(const VolumeSampler& sampler, const glm::dvec3& index, float isoValue) const;
 
   const VoxelVolume& voxels_;
   const TissueMap* tissues_;
   float iso_;
-  Level levels_[2];
-  // Level 1's local frame is centred on its own grid: where a dimension is
-  // odd it sits half a voxel off level 0's, and its vertices are moved by this.
-  glm::dvec3 coarseOffset_{0.0};
+  Level levels_[kLevels];
+  int levelCount_ = 0;  // the levels this volume has (coarse voxels within kMaxVoxelSize)
   std::vector<Vertex> scratch_;
   std::size_t uploads_ = 0;
 };
