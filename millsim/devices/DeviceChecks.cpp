@@ -83,6 +83,33 @@ double nearest(const Trajectory& trajectory, const HapticsDevice* device, const 
   return best;
 }
 
+// A frame that cuts also stamps the burr into the volume (VoxelScene::mill,
+// on the haptic thread). A stamp reads about 15 (r/h)² densities, every voxel
+// of its surface's ramp (milling_bench BM_Stamp's read_p50: 600, 2 150 and
+// 8 100 for a 0.6 mm burr at 100, 50 and 25 µm voxels), at about 15 ns each
+// on the development machine (10, 33 and 120 µs); a VolumeObject's
+// millingBudget caps what one frame reads (docs/algorithms.md, "Milling at
+// fine voxels"), a row more at most. The costliest millable volume's stamp.
+struct StampCost {
+  double seconds = 0.0;
+  double densities = 0.0;
+  const VolumeObject* volume = nullptr;
+};
+constexpr double kStampReadsPerRadiusSquared = 15.0, kSecondsPerStampRead = 15e-9;
+
+StampCost stampCost(const std::vector<PlacedVolume>& volumes, const ToolGeometry& tool) {
+  StampCost worst;
+  const double r = tool.head().boundingRadius();
+  for (const PlacedVolume& v : volumes) {
+    const double h = v.node->voxelEdge();
+    if (!v.node->millable.get() || !(h > 0.0) || !(r > 0.0)) continue;
+    double reads = kStampReadsPerRadiusSquared * (r / h) * (r / h);
+    if (const int budget = v.node->millingBudget.get(); budget > 0) reads = std::min(reads, double(budget) + 2.0 * r / h);
+    if (reads * kSecondsPerStampRead > worst.seconds) worst = {reads * kSecondsPerStampRead, reads, v.node};
+  }
+  return worst;
+}
+
 const HapticsDevice* firstDevice(const Scene& scene) {
   std::vector<FoundDevice> devices;
   findDevices(*scene.root, nullptr, devices);
@@ -168,14 +195,27 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
     return n;
   };
   const FrameCostEstimate cost = renderer->estimateFrameCost(context);
+  const StampCost stamp = stampCost(volumes, tool.geometry());
   const double budget = 1.0 / double(device.desiredHapticsRate.get());
-  if (cost.seconds > budget)
+  auto us = [](double seconds) { return formatNumber(std::round(seconds * 1e7) / 10.0) + " us"; };
+  if (cost.seconds + stamp.seconds > budget) {
+    // Which part to lower: the renderer's, the milling stamp's, or both.
+    std::string model = cost.seconds > 0.0 ? cost.model : "", advice;
+    if (stamp.seconds > 0.0)
+      model += std::string(model.empty() ? "" : "; ") + "a milling frame adds a stamp of the burr into the " +
+               describe(*stamp.volume) + ", about " + formatNumber(std::round(stamp.densities)) + " densities x 15 ns";
+    if (cost.seconds > 0.5 * budget) advice = cost.advice;
+    if (stamp.seconds > 0.5 * budget)
+      advice += std::string(advice.empty() ? "" : "; ") +
+                "a stamp reads about 15 (r/h)^2 densities: give the VolumeObject a larger voxelSize, use a smaller "
+                "burr, or set its millingBudget (docs/algorithms.md, \"Milling at fine voxels\")";
+    if (advice.empty()) advice = cost.advice;
     sink.warning(renderer->location(),
                  renderer->typeName() + " cannot keep up with " + device.typeName() + "'s desiredHapticsRate " +
                      std::to_string(device.desiredHapticsRate.get()) + " Hz: its estimated frame cost is " +
-                     formatNumber(std::round(cost.seconds * 1e7) / 10.0) + " us (" + cost.model +
-                     "), over the frame budget of " + formatNumber(std::round(budget * 1e7) / 10.0) +
-                     " us; " + cost.advice + ", or lower desiredHapticsRate");
+                     us(cost.seconds + stamp.seconds) + " (" + model + "), over the frame budget of " + us(budget) +
+                     "; " + advice + ", or lower desiredHapticsRate");
+  }
 }
 
 std::string trajectoryReachWarning(const Scene& scene, const Trajectory& trajectory, const std::string& label) {

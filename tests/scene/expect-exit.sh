@@ -7,6 +7,7 @@
 #
 # OPTIONS (before CODE, repeatable):
 #   -e PATTERN      the output must match this pattern too (grep -E, any line)
+#   -n PATTERN      the output must not match this pattern (grep -E, any line)
 #   --rows FILE N   FILE (a CSV with one header line) is removed before the
 #                   command runs and must then hold at least N data rows
 #   --file FILE     FILE is removed before the command runs and must then exist
@@ -17,6 +18,7 @@
 #                   test fails, saying so
 # Files are removed first so that a stale file from an earlier run cannot pass.
 patterns=''
+absent=''
 maxmem=''
 maxsecs=''
 rows=''
@@ -26,6 +28,7 @@ nl='
 while :; do
   case $1 in
     -e) patterns="$patterns$2$nl"; shift 2 ;;
+    -n) absent="$absent$2$nl"; shift 2 ;;
     --rows) rows="$rows$2$nl$3$nl"; shift 3 ;;
     --file) files="$files$2$nl"; shift 2 ;;
     --max-memory) maxmem=$2; shift 2 ;;
@@ -33,7 +36,7 @@ while :; do
     *) break ;;
   esac
 done
-if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [--rows FILE N] [--file FILE] [--max-memory MB] [--max-seconds S] CODE PATTERN COMMAND..."; exit 1; fi
+if [ $# -lt 3 ]; then echo "usage: expect-exit.sh [-e PATTERN] [-n PATTERN] [--rows FILE N] [--file FILE] [--max-memory MB] [--max-seconds S] CODE PATTERN COMMAND..."; exit 1; fi
 code=$1
 patterns="$2$nl$patterns"
 shift 2
@@ -59,6 +62,12 @@ while IFS= read -r p; do
   if ! printf '%s\n' "$out" | grep -Eq -- "$p"; then echo "expect-exit: output does not match '$p'"; failed=1; fi
 done <<EOF
 $patterns
+EOF
+while IFS= read -r p; do
+  [ -z "$p" ] && continue
+  if printf '%s\n' "$out" | grep -Eq -- "$p"; then echo "expect-exit: output matches '$p', which it must not"; failed=1; fi
+done <<EOF
+$absent
 EOF
 while IFS= read -r f && IFS= read -r n; do
   if [ ! -f "$f" ]; then echo "expect-exit: $f was not written"; failed=1; continue; fi
