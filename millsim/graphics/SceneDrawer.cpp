@@ -235,7 +235,7 @@ int SceneDrawer::levelOfDetail(std::size_t i, int height) const {
   const double pixelsPerMetre = 0.5 * double(height) * camera_.projection[1][1] / std::max(distance, 1e-9);
   const double pixels = meshes_[i]->voxelSize() * scale * pixelsPerMetre;
   int level = 0;
-  while (level + 1 < VolumeMesh::kLevels && pixels * double(1 << level) < kCoarseBelowPixels) ++level;
+  while (level + 1 < meshes_[i]->levels() && pixels * double(1 << level) < kCoarseBelowPixels) ++level;
   return level;
 }
 

@@ -55,6 +55,7 @@ public:
   void draw(int level = 0) const;
   double voxelSize() const;  // the smallest edge (m)
 
+  int levels() const { return levelCount_; }  // how many this volume has (fewer for coarse CT voxels)
   std::size_t triangles(int level = 0) const;  // 0 for a level not made
   std::size_t chunks() const;                  // of the levels made
   std::size_t uploads() const { return uploads_; }  // chunk uploads since construction (every level)
