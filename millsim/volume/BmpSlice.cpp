@@ -60,7 +60,12 @@ BmpSlice::BmpSlice(const std::filesystem::path& file) {
   size_ = headerSize(file);
   std::unique_ptr<SDL_Surface, void (*)(SDL_Surface*)> s(SDL_LoadBMP_RW(SDL_RWFromFile(file.c_str(), "rb"), 1),
                                                          &SDL_FreeSurface);
-  if (!s) throw VolumeError(name + ": not a BMP SDL2 can read (" + SDL_GetError() + "); is the file cut short?");
+  if (!s) {
+    const std::string why = SDL_GetError();
+    // SDL says "Error reading from datastream" for a file that ends early.
+    throw VolumeError(name + ": not a BMP SDL2 can read (" + why + ")" +
+                      (why.find("reading") != std::string::npos ? "; is the file cut short?" : ""));
+  }
   if (s->w != size_.x || s->h != size_.y)
     throw VolumeError(name + ": SDL2 read " + std::to_string(s->w) + " × " + std::to_string(s->h) +
                       " pixels where the header says " + std::to_string(size_.x) + " × " + std::to_string(size_.y));
