@@ -54,7 +54,7 @@ struct RunGraphicsOptions {
 
 struct RunGraphicsStats {
   long frames = 0;
-  double meshSeconds = 0.0;                // building every volume's mesh at start
+  double meshSeconds = 0.0;                // the renderer made and its first frame drawn: every volume meshed
   double meanMs = 0.0, p95Ms = 0.0;        // all frames
   double meanUpdateMs = 0.0;               // frames that re-meshed milled blocks
   long updateFrames = 0;
