@@ -95,7 +95,7 @@ struct StampCost {
   double densities = 0.0;
   const VolumeObject* volume = nullptr;
 };
-constexpr double kStampReadsPerRadiusSquared = 15.0, kSecondsPerStampRead = 15e-9;
+constexpr double kStampReadsPerRadiusSquared = 15.0, kNanosecondsPerStampRead = 15.0;
 
 StampCost stampCost(const std::vector<PlacedVolume>& volumes, const ToolGeometry& tool) {
   StampCost worst;
@@ -105,7 +105,8 @@ StampCost stampCost(const std::vector<PlacedVolume>& volumes, const ToolGeometry
     if (!v.node->millable.get() || !(h > 0.0) || !(r > 0.0)) continue;
     double reads = kStampReadsPerRadiusSquared * (r / h) * (r / h);
     if (const int budget = v.node->millingBudget.get(); budget > 0) reads = std::min(reads, double(budget) + 2.0 * r / h);
-    if (reads * kSecondsPerStampRead > worst.seconds) worst = {reads * kSecondsPerStampRead, reads, v.node};
+    const double seconds = reads * kNanosecondsPerStampRead * 1e-9;
+    if (seconds > worst.seconds) worst = {seconds, reads, v.node};
   }
   return worst;
 }
@@ -203,11 +204,13 @@ void checkDevices(const Scene& scene, DiagnosticSink& sink) {
     std::string model = cost.seconds > 0.0 ? cost.model : "", advice;
     if (stamp.seconds > 0.0)
       model += std::string(model.empty() ? "" : "; ") + "a milling frame adds a stamp of the burr into the " +
-               describe(*stamp.volume) + ", about " + formatNumber(std::round(stamp.densities)) + " densities x 15 ns";
+               describe(*stamp.volume) + ", about " + formatNumber(std::round(stamp.densities)) + " densities x " +
+               formatNumber(kNanosecondsPerStampRead) + " ns";
     if (cost.seconds > 0.5 * budget) advice = cost.advice;
     if (stamp.seconds > 0.5 * budget)
       advice += std::string(advice.empty() ? "" : "; ") +
-                "a stamp reads about 15 (r/h)^2 densities: give the VolumeObject a larger voxelSize, use a smaller "
+                "a stamp reads about " + formatNumber(kStampReadsPerRadiusSquared) +
+                " (r/h)^2 densities: give the VolumeObject a larger voxelSize, use a smaller "
                 "burr, or set its millingBudget (docs/algorithms.md, \"Milling at fine voxels\")";
     if (advice.empty()) advice = cost.advice;
     sink.warning(renderer->location(),

@@ -28,8 +28,10 @@ std::uint32_t le(const unsigned char* p, int bytes) {
   return v;
 }
 
-// The size the header says, checked before SDL allocates for it.
-glm::ivec2 headerSize(const std::filesystem::path& file) {
+}  // namespace
+
+// Read before SDL allocates for it.
+glm::ivec2 BmpSlice::headerSize(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   if (!f) throw VolumeError(name + ": cannot open it");
@@ -52,8 +54,6 @@ glm::ivec2 headerSize(const std::filesystem::path& file) {
                       "so it may have at most " + std::to_string(kMaxPixels) + " pixels: save the stack as TIFF or PNG");
   return {int(w), int(hgt)};
 }
-
-}  // namespace
 
 BmpSlice::BmpSlice(const std::filesystem::path& file) {
   const std::string name = file.string();

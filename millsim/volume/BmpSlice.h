@@ -17,6 +17,9 @@ public:
   // Reads and checks the file: one grey value a pixel (a palette or colour
   // pixels whose red, green and blue are equal); a VolumeError otherwise.
   explicit BmpSlice(const std::filesystem::path& file);
+  // The size its header says (checked: 1 to 65536 a side, at most 2^28
+  // pixels), without decoding it; a VolumeError otherwise.
+  static glm::ivec2 headerSize(const std::filesystem::path& file);
 
   glm::ivec2 size() const { return size_; }
   // Row y (0 at the top, as TIFF and PNG slices are read), size().x grey values.

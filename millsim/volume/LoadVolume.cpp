@@ -53,11 +53,16 @@ bool hasDicomMagic(const fs::path& file) {
 
 }  // namespace
 
+bool isSliceImageFile(const fs::path& path) {
+  const std::string ext = asciiLower(path.extension().string());
+  return ext == ".tif" || ext == ".tiff" || ext == ".png" || ext == ".bmp";
+}
+
 bool isSliceStackPattern(const std::string& path) {
   // Only a slice file name's own %d counts: a folder may have a '%' in its name.
   const fs::path p(path);
-  const std::string file = p.filename().string(), ext = asciiLower(p.extension().string());
-  if (ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".bmp") return false;
+  const std::string file = p.filename().string();
+  if (!isSliceImageFile(p)) return false;
   const std::size_t pct = file.find('%');
   if (pct == std::string::npos) return false;
   std::size_t i = pct + 1;
@@ -76,16 +81,16 @@ bool isTiffFile(const fs::path& p) {
 // such files and no DICOM file (a stray preview .tif in a DICOM series stays DICOM).
 bool holdsImageSlices(const fs::path& folder) {
   std::error_code ec;
-  bool tiff = false;
+  bool images = false;
   int unnamed = 0;
   for (const auto& e : fs::directory_iterator(folder, ec)) {
     if (!e.is_regular_file(ec)) continue;
     const std::string ext = asciiLower(e.path().extension().string());
     if (ext == ".dcm" || ext == ".dicom") return false;
     if (ext.empty() && ++unnamed <= 16 && hasDicomMagic(e.path())) return false;
-    tiff |= isTiffFile(e.path()) || ext == ".png" || ext == ".bmp";
+    images |= isSliceImageFile(e.path());
   }
-  return tiff;
+  return images;
 }
 
 // A local url (a path, file:///path or file:path) as a path, relative ones against baseDir.

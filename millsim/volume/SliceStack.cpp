@@ -300,6 +300,9 @@ SliceKind kindOf(const fs::path& p) { return isPng(p) ? SliceKind::png : isBmp(p
 
 const char* kindName(SliceKind k) { return k == SliceKind::png ? "PNG" : k == SliceKind::bmp ? "BMP" : "TIFF"; }
 
+// A BMP slice's shape: 8-bit grey, no resolution (BmpSlice.h).
+Page bmpPage(glm::ivec2 size) { return Page{size, 8, false, false, false, 0.0}; }
+
 // One BMP slice's rows into the builder (8-bit grey).
 void readBmp(const medical::BmpSlice& slice, VolumeBuilder& builder) {
   std::vector<float> values(std::size_t(slice.size().x));
@@ -361,7 +364,7 @@ std::vector<fs::path> sliceFiles(const fs::path& folderOrPattern) {
   }
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(folderOrPattern, ec))
-    if (e.is_regular_file(ec) && (isTiff(e.path()) || isPng(e.path()) || isBmp(e.path()))) {
+    if (e.is_regular_file(ec) && isSliceImageFile(e.path())) {
       if (files.size() == kMaxSlices)
         throw VolumeError(text + ": more than " + std::to_string(kMaxSlices) + " slices; MillSim reads at most that many");
       files.push_back(e.path());
@@ -393,7 +396,7 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
   // The shape: every page must match the first.
   TiffFile first = png || bmp ? nullptr : openTiff(files[0]);
   const Page shape = png   ? PngSlice(files[0]).page()
-                     : bmp ? Page{medical::BmpSlice(files[0]).size(), 8, false, false, false, 0.0}
+                     : bmp ? bmpPage(medical::BmpSlice::headerSize(files[0]))
                            : pageOf(first.get(), files[0].string());
   std::size_t slices = files.size();
   if (!onePerFile) {
@@ -428,7 +431,7 @@ VoxelVolume medical::readSliceStack(const fs::path& source, float airValue, glm:
   if (bmp) {
     for (const fs::path& f : files) {
       const medical::BmpSlice slice(f);
-      mismatch(f, Page{slice.size(), 8, false, false, false, 0.0});
+      mismatch(f, bmpPage(slice.size()));
       readBmp(slice, builder);
     }
   } else if (png) {

@@ -59,6 +59,8 @@ LoadedVolume loadMeshParts(const std::vector<std::string>& urls, const std::file
                            const MeshVoxelOptions& mesh);
 // True for a path with one printf integer field (%d, %04d): a slice-stack pattern.
 bool isSliceStackPattern(const std::string& path);
+// True for a slice image a stack may hold, by its extension: .tif, .tiff, .png or .bmp.
+bool isSliceImageFile(const std::filesystem::path& path);
 
 // Throws VolumeError "FILE: no such file" or "FILE: is a folder, not WHAT".
 void requireFile(const std::filesystem::path& file, const std::string& what);
