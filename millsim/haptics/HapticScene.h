@@ -64,10 +64,16 @@ public:
   }
 
   // Volume `volume`'s point shell at `scale` (points in its local frame),
-  // current with all milling so far. The first call for a (volume, scale)
-  // builds it: make that call in compile(), on the scene thread; later calls
-  // from step() only bring it up to date, without allocating.
+  // current with all milling so far: for step(), which brings it up to date
+  // without allocating. compile() asks for it with preparePointShell first.
   virtual const PointShellQuery& pointShell(std::size_t volume, int scale) = 0;
+  // For compile(), on the scene thread: the shell, built if this is the first
+  // request. One that exists is returned as it is, not brought up to date:
+  // while a loop runs, the haptic thread owns it (a burr swap compiles while
+  // the loop mills). A shell that does not exist cannot be built while a loop
+  // runs, since building reads the voxels being milled: that throws
+  // std::runtime_error, and the change waits for the next run.
+  virtual const PointShellQuery& preparePointShell(std::size_t volume, int scale) { return pointShell(volume, scale); }
 };
 
 }  // namespace millsim

@@ -42,11 +42,14 @@ public:
   BarbicAlgorithm(const BarbicParams& p, const ToolGeometry& tool, double sdfVoxel, HapticScene& scene)
       : p_(p), sdf_(tool, sdfVoxel), reach_(std::max(tool.shaftLength, tool.head().boundingRadius())),
         reachTip_(tool.head().boundingRadius()) {
-    // The scene builds the shells on first request: here, on the scene thread, not in step().
+    // The scene builds the shells on first request: here, on the scene thread,
+    // not in step(). Shells that exist are left to the haptic thread, which
+    // may be milling with them now (a burr swap compiles while running).
     shells_.resize(scene.volumeCount());
-    followMilling(scene);
     for (std::size_t i = 0; i < shells_.size(); ++i) {
-      scene.pointShell(i, 2 * p_.scale);
+      shells_[i].placement = &scene.placement(i);
+      shells_[i].fine = &scene.preparePointShell(i, p_.scale);
+      scene.preparePointShell(i, 2 * p_.scale);
       // A shell's bucket grid is fixed: step() never grows this list.
       candidates_.reserve(std::max(candidates_.capacity(), shells_[i].fine->bucketCount()));
     }

@@ -285,12 +285,16 @@ void HapticLoop::start(double duration) {
     driver_->startServo([this] { return servoFrame(); });
     return;
   }
+  scene_.setLoopRunning(true);
   thread_ = std::thread([this, duration] { runRealTime(duration); });
 }
 
 void HapticLoop::join() {
   if (thread_.joinable()) thread_.join();
-  if (!servoRun_) return;
+  if (!servoRun_) {
+    scene_.setLoopRunning(false);
+    return;
+  }
   // A servo thread ends the run at its next call after stop(); one that
   // stopped calling gets no more calls (its library's contract, and the
   // driver's stopServo for a library MillSim started), so the device is
@@ -303,6 +307,7 @@ void HapticLoop::join() {
     endTimedRun();
   }
   servoRun_ = driverServo_ = false;
+  scene_.setLoopRunning(false);
 }
 
 bool HapticLoop::servoSilentFor(double seconds) const {
@@ -367,6 +372,7 @@ void HapticLoop::startServo(double duration) {
   duration_ = duration;
   servoOver_ = false;
   servoRun_ = true;
+  scene_.setLoopRunning(true);
   lastServoNs_.store(std::chrono::nanoseconds(Clock::now().time_since_epoch()).count(), std::memory_order_relaxed);
   finished_.store(false, std::memory_order_release);
 }

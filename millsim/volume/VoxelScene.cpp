@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -115,6 +117,16 @@ glm::dvec3 VoxelScene::gradient(const glm::dvec3& world) const {
 }
 
 const PointShellQuery& VoxelScene::pointShell(std::size_t volume, int scale) { return shell(volume, scale); }
+
+const PointShellQuery& VoxelScene::preparePointShell(std::size_t volume, int scale) {
+  for (Shell& s : shells_)
+    if (s.volume == volume && s.scale == scale) return *s.shell;
+  if (loopRunning_.load(std::memory_order_acquire))
+    throw std::runtime_error("volume " + std::to_string(volume) + " has no point shell at scale " +
+                             std::to_string(scale) +
+                             " and one cannot be built while the haptic loop mills it; it takes effect at the next run");
+  return shell(volume, scale);
+}
 
 const PointShell& VoxelScene::shell(std::size_t volume, int scale) {
   Volume& v = *volumes_.at(volume);

@@ -90,6 +90,12 @@ public:
   double voxelSize() const override { return voxelSize_ > 0.0 ? voxelSize_ : 1e-4; }
   // Merges the milling the shell has not seen yet (see Shell), then returns it.
   const PointShellQuery& pointShell(std::size_t volume, int scale) override;
+  // Builds the shell if it is new (refused while a loop runs: see
+  // setLoopRunning); returns an existing one untouched.
+  const PointShellQuery& preparePointShell(std::size_t volume, int scale) override;
+  // Set by HapticLoop from start() to join(): the haptic thread owns the
+  // shells and mills the voxels, so the scene thread may not build a shell.
+  void setLoopRunning(bool running) { loopRunning_.store(running, std::memory_order_release); }
   // The same, as the volume room's own type (tests and benchmarks look inside).
   const PointShell& shell(std::size_t volume, int scale);
 
@@ -130,6 +136,7 @@ private:
   static void feelPendingCuts(Volume& v);
   std::vector<std::unique_ptr<Volume>> volumes_;
   std::vector<Shell> shells_;
+  std::atomic<bool> loopRunning_{false};
   double voxelSize_ = 0.0;  // 0 until a volume is added
 };
 

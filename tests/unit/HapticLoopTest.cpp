@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "millsim/devices/TrajectoryDevice.h"
+#include "millsim/renderers/BarbicRenderer.h"
 #include "millsim/renderers/SurfacePointRenderer.h"
 #include "millsim/run/FrameLog.h"
 #include "millsim/run/HapticLoop.h"
@@ -391,6 +392,52 @@ TEST(HapticLoop, MillsInRealTimeWhileGraphicsAndSceneThreadsRead) {
   EXPECT_EQ(rows, st.frames + 1) << "every frame, then the stop row";
   EXPECT_GT(framesSeen, 0);
   EXPECT_EQ(replica.volume().contentHash(), volume.contentHash()) << "the graphics copy missed a milled block";
+}
+
+// A burr swap while running (the B key) compiles Barbic again on the scene
+// thread, for the slot that renders and for the waiting one, while the haptic
+// thread mills the same scene. The compile must leave the shells alone: the
+// haptic thread brings them up to date in step(), and milling writes their
+// pending changes. Under ThreadSanitizer (the tsan preset) this is the race
+// check; in any build, a shell the run did not build before it started is
+// refused while it runs (building it would read voxels being milled).
+TEST(HapticLoop, BarbicCompiledOnTheSceneThreadWhileTheHapticThreadMillsLeavesTheShellsAlone) {
+  ToothPhantomOptions o = parsePhantomUrl("phantom:tooth?size=64,64,44");
+  VoxelVolume volume = makeToothPhantom(o);
+  VoxelScene scene;
+  scene.addVolume(volume, glm::dmat4(1.0), 700.0);
+  const double top = volume.voxelSize().y * volume.dims().y * 0.5;
+  const Trajectory t({{0.0, Pose{glm::dvec3(0, top, 0), glm::dquat(1, 0, 0, 0)}, true},
+                      {0.3, Pose{glm::dvec3(0, 0, 0), glm::dquat(1, 0, 0, 0)}, true},
+                      {0.5, Pose{glm::dvec3(0, 0, 0), glm::dquat(1, 0, 0, 0)}, true}});
+  const ToolGeometry tool{0.6e-3, 0.4e-3, 10e-3};
+  BarbicRenderer barbic;  // pointShellScale 1: shells at scales 1 and 2
+  LoopSettings s = settings();
+  s.tool = tool;
+  HapticLoop loop(scene, barbic.compile(tool, scene), makeTrajectoryDriver(t, false), s);
+  loop.start(t.endTime());
+  int compiled = 0;
+  std::string refusal;
+  while (!loop.finished()) {
+    // As RendererPool::followTool and prepare() do for a new burr.
+    auto again = barbic.compile(ToolGeometry{0.5e-3, 0.4e-3, 10e-3}, scene);
+    compiled += again != nullptr;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  // Still the loop's until join(): a shell it did not have is refused, naming why.
+  BarbicRenderer coarser;
+  coarser.pointShellScale.set(3);
+  try {
+    coarser.compile(tool, scene);
+  } catch (const std::runtime_error& e) {
+    refusal = e.what();
+  }
+  loop.join();
+  EXPECT_GT(compiled, 2);
+  EXPECT_GT(loop.stats().removedVolume, 0.0);
+  EXPECT_NE(refusal.find("point shell at scale 3"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("next run"), std::string::npos) << refusal;
+  EXPECT_NO_THROW(coarser.compile(tool, scene)) << "once the loop is joined, the scene is the scene thread's again";
 }
 
 // The device's live fields reach the haptic thread at the next frame: a new
