@@ -30,6 +30,7 @@
 
 #include <zlib.h>
 
+#include "millsim/volume/InflateAhead.h"
 #include "millsim/volume/ReaderLimits.h"
 #include "millsim/volume/VolumeBuilder.h"
 #include "millsim/volume/VolumeIO.h"
@@ -395,46 +396,33 @@ VoxelVolume readNrrd(const fs::path& file, float airValue) {
       left -= k;
     }
   } else if (enc == "gzip") {
-    z_stream zs{};
-    if (inflateInit2(&zs, 15 + 32) != Z_OK) throw VolumeError(name + ": cannot start zlib");
-    // Ended on every way out: a density refused mid-stream throws from conv.feed.
-    struct EndInflate {
-      z_stream& zs;
-      ~EndInflate() { inflateEnd(&zs); }
-    } endInflate{zs};
-    std::vector<unsigned char> out(1 << 18);
-    std::uintmax_t produced = 0;
-    bool streamEnd = false, inputEnd = false;
-    std::string error;
-    while (!streamEnd && error.empty()) {
-      if (zs.avail_in == 0 && !inputEnd) {
-        data.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size()));
-        zs.next_in = chunk.data();
-        zs.avail_in = uInt(data.gcount());
-        if (zs.avail_in == 0) inputEnd = true;
-      }
-      zs.next_out = out.data();
-      zs.avail_out = uInt(out.size());
-      const int rc = inflate(&zs, Z_NO_FLUSH);
-      const std::size_t got = out.size() - zs.avail_out;
-      if (got > 0) {
-        if (produced + got > want) {
-          error = "header/size mismatch: the gzip data holds more than the " + promised(want, dims, h.typeName) +
-                  " the header promises";
-          break;
-        }
-        conv.feed(out.data(), got);
-        produced += got;
-      }
-      if (rc == Z_STREAM_END) {
-        streamEnd = true;
-      } else if (rc == Z_DATA_ERROR || rc == Z_MEM_ERROR || rc == Z_NEED_DICT) {
-        error = std::string("corrupt gzip data (") + (zs.msg ? zs.msg : "zlib error") + ")";
-      } else if (rc == Z_BUF_ERROR && inputEnd) {
-        error = "truncated data: the gzip stream ends early; the header promises " + promised(want, dims, h.typeName) +
-                ", it holds " + std::to_string(produced);
-      }
+    // Inflated on another thread, up to a slab of the builder ahead of the
+    // conversion, so that zlib goes on while a slab goes into the grid
+    // (InflateAhead.h). A stream that holds more than the header promises
+    // stops at the first chunk over.
+    const std::size_t slabBytes = volume.slabValues() * scalarBytes(*type);
+    std::optional<InflateAhead> ahead;
+    try {
+      ahead.emplace(data, 15 + 32, std::min<std::size_t>(slabBytes, std::size_t(128) << 20));
+    } catch (const std::runtime_error&) {
+      throw VolumeError(name + ": cannot start zlib");
     }
+    std::uintmax_t produced = 0;
+    std::string error;
+    for (InflateAhead::Chunk c = ahead->next(); c.size > 0; c = ahead->next()) {
+      if (produced + c.size > want) {
+        error = "header/size mismatch: the gzip data holds more than the " + promised(want, dims, h.typeName) +
+                " the header promises";
+        break;
+      }
+      conv.feed(c.data, c.size);
+      produced += c.size;
+    }
+    if (error.empty() && ahead->end() == InflateAhead::End::Corrupt)
+      error = "corrupt gzip data (" + ahead->message() + ")";
+    else if (error.empty() && ahead->end() == InflateAhead::End::Truncated)
+      error = "truncated data: the gzip stream ends early; the header promises " + promised(want, dims, h.typeName) +
+              ", it holds " + std::to_string(produced);
     if (!error.empty()) throw VolumeError(name + ": " + error);
     if (produced < want)
       throw VolumeError(name + ": truncated data: the header promises " + promised(want, dims, h.typeName) +

@@ -36,6 +36,9 @@ public:
   void append(const float* values, std::size_t count);
 
   std::size_t valuesTotal() const { return total_; }
+  // Values a slab holds: advance() puts them into the grid at once (a reader
+  // that runs ahead of the builder covers a few).
+  std::size_t slabValues() const { return slab_.size(); }
 
   // The volume (once: the builder is spent). Throws VolumeError unless every
   // voxel has been given.
