@@ -8,8 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <zlib.h>
-
+#include "ZlibCompress.h"
 #include "millsim/volume/InflateAhead.h"
 
 using namespace millsim;
@@ -28,19 +27,7 @@ std::string original() {
   return s;
 }
 
-std::string gzip(const std::string& in) {
-  z_stream zs{};
-  EXPECT_EQ(deflateInit2(&zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
-  std::string out(deflateBound(&zs, uLong(in.size())), '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data()));
-  zs.avail_in = uInt(in.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = uInt(out.size());
-  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
+std::string gzip(const std::string& in) { return test::compress(in, 15 + 16); }
 
 struct Read {
   std::string bytes;

@@ -28,6 +28,7 @@
 #include <zlib.h>
 
 #include "TestFiles.h"
+#include "ZlibCompress.h"
 #include "millsim/volume/VolumeIO.h"
 #include "millsim/volume/VoxelVolume.h"
 
@@ -67,20 +68,7 @@ std::string be(const std::vector<T>& v) {  // big-endian bytes
   return s;
 }
 
-// gzip (windowBits 31) or zlib (15) compression, written here independently of the library's writer.
-std::string compress(const std::string& data, int windowBits) {
-  z_stream zs{};
-  EXPECT_EQ(deflateInit2(&zs, 6, Z_DEFLATED, windowBits, 8, Z_DEFAULT_STRATEGY), Z_OK);
-  std::string out(deflateBound(&zs, uLong(data.size())) + 64, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = uInt(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = uInt(out.size());
-  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
+using millsim::test::compress;
 
 // Runs a python script with Debian's python3 (which has pydicom); returns stdout, fails the test on error.
 std::string runPython(const fs::path& script, const std::string& args) {
