@@ -56,8 +56,6 @@ public:
   const std::string& message() const { return message_; }
 
 private:
-  void inflateAll(std::istream& in, int windowBits);
-
   const int chunks_;
   std::vector<std::vector<unsigned char>> buffers_;
   std::vector<std::size_t> sizes_;
