@@ -17,10 +17,13 @@
 #include <condition_variable>
 #include <cstddef>
 #include <istream>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
+
+struct z_stream_s;  // zlib's z_stream, kept out of this header
 
 namespace millsim {
 
@@ -56,6 +59,12 @@ public:
   const std::string& message() const { return message_; }
 
 private:
+  // The inflating thread's loop: fills the ring until the stream ends or the reader stops.
+  void inflateAll(std::istream& in);
+  struct ZStreamDelete {
+    void operator()(z_stream_s* zs) const;
+  };
+
   const int chunks_;
   std::vector<std::vector<unsigned char>> buffers_;
   std::vector<std::size_t> sizes_;
@@ -70,6 +79,7 @@ private:
   int held_ = -1;
   End end_ = End::Complete;  // written by the inflating thread before done_
   std::string message_;
+  std::unique_ptr<z_stream_s, ZStreamDelete> zs_;  // used by the inflating thread only, once started
   std::thread thread_;
 };
 
